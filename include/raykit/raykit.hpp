@@ -1,0 +1,6 @@
+// raykit — umbrella header: every CPU-side part of the kit.
+#pragma once
+
+#include "raykit/common.hpp"
+#include "raykit/fresnel.hpp"
+#include "raykit/shader_source.hpp"

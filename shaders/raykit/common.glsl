@@ -1,0 +1,58 @@
+// raykit — common.glsl: the shared-dialect prelude, constants and small robust helpers.
+//
+// Shared GLSL/C++ source. In GLSL, include it with GL_GOOGLE_include_directive (or let
+// raykit::resolve_shader_includes() inline it for a driver). In C++, include raykit/common.hpp.
+// The dialect rules (docs/dialect.md) in one breath: qualify functions with RK_INLINE, write
+// out/inout parameters as RK_OUT(T)/RK_INOUT(T), no swizzles (use .x/.y/.z/.w and constructors),
+// every float literal with an `f` suffix, build structs field by field, unsigned math with `uint`
+// and `u`-suffixed literals, no implicit int->float conversion.
+//
+// @rk-es 310
+#ifndef RK_COMMON_GLSL
+#define RK_COMMON_GLSL
+
+#ifdef __cplusplus
+#define RK_INLINE inline
+#define RK_OUT(T) T&
+#define RK_INOUT(T) T&
+#define RK_UNUSED(x) (void)(x)
+#else
+#define RK_INLINE
+#define RK_OUT(T) out T
+#define RK_INOUT(T) inout T
+#define RK_UNUSED(x)
+#endif
+
+#define RK_PI 3.14159265358979323846f
+#define RK_HALF_PI 1.57079632679489661923f
+#define RK_INV_PI 0.31830988618379067154f
+// Smallest positive normal float. Used as a floor wherever a quantity is divided by, so that
+// denormal inputs behave like zero on every backend (GPUs may flush denormals, CPUs do not).
+#define RK_FLT_MIN 1.175494351e-38f
+#define RK_FLT_MAX 3.402823466e+38f
+
+/// rk_saturate: clamp to [0, 1].
+/// Domain: any finite x. Exact. Cost: 1 clamp (a free output modifier on most GPUs).
+RK_INLINE float rk_saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+
+/// rk_pow5: x^5 by three multiplies (the Schlick kernel).
+/// Domain: any float; |x| > ~4.3e7 overflows to ±inf, callers keep x in [0, 1].
+/// Max error: 2 ulp vs float64 (three roundings). Cost: 3 mul.
+RK_INLINE float rk_pow5(float x)
+{
+    float x2 = x * x;
+    return x2 * x2 * x;
+}
+
+/// rk_sqr: x*x. Exact up to one rounding. Cost: 1 mul.
+RK_INLINE float rk_sqr(float x) { return x * x; }
+
+/// rk_safe_sqrt: sqrt(max(x, 0)); never NaN for finite x (round-off can make a squared
+/// difference slightly negative). Max error: that of sqrt. Cost: 1 max + 1 sqrt.
+RK_INLINE float rk_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
+
+/// rk_safe_rcp_pos: 1/x for x expected >= 0, with x floored at RK_FLT_MIN so zero and
+/// denormals give a large finite value instead of inf. Cost: 1 max + 1 div.
+RK_INLINE float rk_safe_rcp_pos(float x) { return 1.0f / max(x, RK_FLT_MIN); }
+
+#endif  // RK_COMMON_GLSL

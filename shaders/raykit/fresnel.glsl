@@ -1,0 +1,318 @@
+// raykit — fresnel.glsl: Fresnel reflectance for dielectrics, conductors and window glass.
+//
+// Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/fresnel.hpp.
+// Source: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural
+// Environments", §3.1 (Fresnel, Schlick) and §3.2 (multiple reflections in a pane, Eq. 3.7-3.8);
+// corrections from shared/reference/notes/seed002.md §3 (cos form, per-polarisation slab,
+// TIR at 41.14° for n = 1.52).
+//
+// Conventions, used by every function here:
+//   cos_i  cosine of the angle between the surface normal and the direction towards the viewer
+//          (or light), on the side the light arrives from. Clamped to [0, 1]: a caller whose
+//          normal faces away passes abs(dot) and the matching eta.
+//   eta    relative index of refraction n_t / n_i (transmitted over incident side): 1.52 for
+//          air -> glass, 1/1.52 for glass -> air. Clamped to [RK_FRESNEL_ETA_MIN, RK_FRESNEL_ETA_MAX].
+//          NOTE: GLSL's built-in refract() takes the inverse ratio n_i / n_t; rk_refract takes eta.
+// Every function returns finite values for every finite input (denormals, ±0, huge values).
+// Errors quoted are against the float64 formulas in tests/reference/fresnel_ref.hpp, measured by
+// tests/test_fresnel.cpp and bench/bench_fresnel.cpp (docs/benchmarks.md).
+//
+// Feature macros:
+//   RK_FRESNEL_WINDOW_MODE  which reflectance rk_fresnel_window() returns (default 2):
+//                           0 single surface, exact;  1 the thesis's slab 2R/(1+R) applied to the
+//                           polarisation average (Eq. 3.8);  2 slab applied per polarisation
+//                           (physically right order);  3 N panes per polarisation.
+//
+// @rk-es 310
+// @rk-variants RK_FRESNEL_WINDOW_MODE=0 | RK_FRESNEL_WINDOW_MODE=1 | RK_FRESNEL_WINDOW_MODE=2 | RK_FRESNEL_WINDOW_MODE=3
+#ifndef RK_FRESNEL_GLSL
+#define RK_FRESNEL_GLSL
+
+#include "common.glsl"
+
+#ifndef RK_FRESNEL_WINDOW_MODE
+#define RK_FRESNEL_WINDOW_MODE 2
+#endif
+
+#define RK_FRESNEL_ETA_MIN 0.000244140625f  // 1/4096
+#define RK_FRESNEL_ETA_MAX 4096.0f
+
+/// rk_fresnel_clamp_eta: eta clamped to [1/4096, 4096], the domain of every function here.
+/// Cost: 1 clamp.
+RK_INLINE float rk_fresnel_clamp_eta(float eta)
+{
+    return clamp(eta, RK_FRESNEL_ETA_MIN, RK_FRESNEL_ETA_MAX);
+}
+
+/// rk_f0_from_ior: reflectance at normal incidence ((n1 - n2) / (n1 + n2))^2 between media of
+/// indices n1 and n2. Domain: n1, n2 > 0 (clamped to [RK_FLT_MIN, 1e30]).
+/// Max error: 3 ulp. Cost: 1 add, 1 sub, 1 div, 1 mul. F0(1, 1.52) = 0.0425800.
+RK_INLINE float rk_f0_from_ior(float n1, float n2)
+{
+    float a = clamp(n1, RK_FLT_MIN, 1e30f);
+    float b = clamp(n2, RK_FLT_MIN, 1e30f);
+    return rk_sqr((a - b) / (a + b));
+}
+
+/// rk_f0_from_eta: F0 for a relative index eta = n_t / n_i: ((eta - 1) / (eta + 1))^2.
+/// Domain: eta >= 0 (clamped to [0, 1e30]). Max error: 3 ulp. Cost: 1 div, 3 flops.
+RK_INLINE float rk_f0_from_eta(float eta)
+{
+    float e = clamp(eta, 0.0f, 1e30f);
+    return rk_sqr((e - 1.0f) / (e + 1.0f));
+}
+
+/// rk_eta_from_f0: the relative index eta >= 1 whose F0 is f0 (inverse of rk_f0_from_eta on its
+/// external branch): (1 + sqrt(F0)) / (1 - sqrt(F0)). Domain: f0 in [0, 1), clamped to
+/// [0, 0.9999990]; f0 -> 1 gives eta ~ 4e6 instead of inf. Max error: 4 ulp relative plus the
+/// conditioning of the inverse near f0 = 1. Cost: 1 sqrt, 1 div.
+RK_INLINE float rk_eta_from_f0(float f0)
+{
+    float s = sqrt(clamp(f0, 0.0f, 0.9999990f));
+    return (1.0f + s) / (1.0f - s);
+}
+
+/// rk_fresnel_schlick: Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (thesis Eq. 3.6).
+/// Domain: cos_i and f0 clamped to [0, 1]. Error vs the exact dielectric: 0.0345 max for glass
+/// n = 1.52 (near 85°), 0.060 for water (1.33); exact at 0° and 90°. Cost: 5 flops, no division.
+RK_INLINE float rk_fresnel_schlick(float cos_i, float f0)
+{
+    float f = rk_saturate(f0);
+    return f + (1.0f - f) * rk_pow5(1.0f - rk_saturate(cos_i));
+}
+
+/// rk_fresnel_schlick (RGB F0): per-channel Schlick, e.g. for metals' F0 colour.
+/// Same domain, error and cost (x3 lanes) as the scalar form.
+RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0)
+{
+    vec3 f = clamp(f0, vec3(0.0f), vec3(1.0f));
+    return f + (vec3(1.0f) - f) * rk_pow5(1.0f - rk_saturate(cos_i));
+}
+
+/// rk_fresnel_schlick (with f90): F0 + (F90 - F0)(1 - cos)^5, the generalisation used for
+/// specular occlusion / energy terms. f0, f90 clamped to [0, 1]. Cost: 5 flops.
+RK_INLINE float rk_fresnel_schlick(float cos_i, float f0, float f90)
+{
+    float a = rk_saturate(f0);
+    return a + (rk_saturate(f90) - a) * rk_pow5(1.0f - rk_saturate(cos_i));
+}
+
+/// rk_fresnel_schlick (RGB F0 and F90). Cost: 5 flops x3 lanes.
+RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0, vec3 f90)
+{
+    vec3 a = clamp(f0, vec3(0.0f), vec3(1.0f));
+    vec3 b = clamp(f90, vec3(0.0f), vec3(1.0f));
+    return a + (b - a) * rk_pow5(1.0f - rk_saturate(cos_i));
+}
+
+/// rk_fresnel_dielectric_sp: exact reflectances (Rs, Rp) of the s- and p-polarised components at
+/// a smooth dielectric interface, and (1, 1) under total internal reflection.
+/// Written in the cancellation-free cos form: with g^2 = eta^2 - 1 + cos^2,
+///   rs = (1 - eta^2) / (cos + g)^2,   rp = (eta^2 - 1)((eta^2 + 1) cos^2 - 1) / (eta^2 cos + g)^2,
+/// which is algebraically the textbook (cos_i - eta cos_t)/(cos_i + eta cos_t) pair but has no
+/// 0/0 at normal incidence and keeps full relative precision at matched indices (eta -> 1), where
+/// it returns exactly 0 (including the grazing limit cos = 0, eta = 1).
+/// Domain: all finite cos_i, eta (see the file header). Max error vs float64 (cos +- 1 ulp, the
+/// input's own rounding): 1.5e-6 absolute, at eta = 1/4 just inside the critical angle where R is
+/// infinitely steep; mean 1.5e-8 (tests/test_fresnel.cpp prints the worst input).
+/// Cost: 1 sqrt, 2 div, ~14 flops.
+/// TIR: when eta < 1 and cos_i < sqrt(1 - eta^2), i.e. above rk_critical_angle(eta).
+RK_INLINE vec2 rk_fresnel_dielectric_sp(float cos_i, float eta)
+{
+    float c = rk_saturate(cos_i);
+    float e = rk_fresnel_clamp_eta(eta);
+    float e2m1 = (e - 1.0f) * (e + 1.0f);  // eta^2 - 1 without cancellation near eta = 1
+    float g2 = e2m1 + c * c;
+    if (g2 < 0.0f) {
+        return vec2(1.0f);  // total internal reflection
+    }
+    float g = sqrt(g2);
+    float e2 = e * e;
+    float rs = -e2m1 / max(rk_sqr(c + g), RK_FLT_MIN);
+    float rp = e2m1 * ((e2 + 1.0f) * c * c - 1.0f) / max(rk_sqr(e2 * c + g), RK_FLT_MIN);
+    return vec2(min(rs * rs, 1.0f), min(rp * rp, 1.0f));
+}
+
+/// rk_fresnel_dielectric: exact unpolarised reflectance (Rs + Rp) / 2 of a smooth dielectric
+/// interface; 1 under total internal reflection. Same domain, error and cost as
+/// rk_fresnel_dielectric_sp. F(cos 0°, 1.52) = 0.0425800, F(cos 85°, 1.52) = 0.61492.
+RK_INLINE float rk_fresnel_dielectric(float cos_i, float eta)
+{
+    vec2 r = rk_fresnel_dielectric_sp(cos_i, eta);
+    return 0.5f * (r.x + r.y);
+}
+
+/// rk_fresnel_fast_params: per-material constants for rk_fresnel_dielectric_fast:
+/// (eta^2, g0 = sqrt(eta^2 - 1), eta - g0). Compute once per material (CPU uniform, or a
+/// constant the shader compiler folds). eta is clamped to [1, RK_FRESNEL_ETA_MAX]: the fast form
+/// is for external reflection only. Cost: 1 sqrt.
+RK_INLINE vec3 rk_fresnel_fast_params(float eta)
+{
+    float e = clamp(eta, 1.0f, RK_FRESNEL_ETA_MAX);
+    float g0 = sqrt((e - 1.0f) * (e + 1.0f));
+    return vec3(e * e, g0, e - g0);
+}
+
+/// rk_fresnel_dielectric_fast: unpolarised dielectric reflectance for external reflection
+/// (eta >= 1) with the per-pixel square root replaced by its chord: g(cos) = sqrt(eta^2-1+cos^2)
+/// ~ g0 + (eta - g0) cos^2, which is exact at 0° and 90° (so F0 and the grazing 1 are exact),
+/// then the textbook rs, rp fused over one division.
+/// Max abs error vs exact (measured over cos in [0,1]): 1.7e-3 for eta = 1.52 (Schlick: 3.45e-2),
+/// 3.7e-3 for 1.33 (Schlick: 6.0e-2), 3.5e-4 for 2.0, 1.3e-2 for 1.1 (Schlick: 0.21).
+/// Cost: 1 div + ~16 flops, no sqrt (params precomputed). Domain: cos_i clamped to [0, 1];
+/// params from rk_fresnel_fast_params. Never NaN: the denominator is floored.
+RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, vec3 params)
+{
+    float c = rk_saturate(cos_i);
+    float e2 = params.x;
+    float g = params.y + params.z * c * c;
+    float a = c + g;
+    float b = e2 * c + g;
+    float ns = (c - g) * b;   // rs * (a b)
+    float np = (e2 * c - g) * a;  // rp * (a b)
+    return 0.5f * (ns * ns + np * np) / max(rk_sqr(a * b), RK_FLT_MIN);
+}
+
+/// rk_fresnel_dielectric_fast (eta form): convenience that builds the params inline; costs one
+/// sqrt more unless eta is a compile-time constant.
+RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, float eta)
+{
+    return rk_fresnel_dielectric_fast(cos_i, rk_fresnel_fast_params(eta));
+}
+
+/// rk_fresnel_conductor: exact unpolarised reflectance of a conductor with complex relative index
+/// eta + i k per RGB channel (e.g. gold ~ (0.143, 0.374, 1.442) + i (3.983, 2.385, 1.603)).
+/// Standard closed form with a^2 + b^2 = |eta^2 - k^2 - sin^2 + 2 i eta k|. With k = 0 it equals
+/// rk_fresnel_dielectric for eta >= 1. Domain: cos_i clamped to [0, 1]; eta, k clamped to
+/// [0, 4096]. Max error: 2e-6 absolute (float cancellation in t1 - t2 near normal incidence).
+/// Cost: 3 sqrt, 2 div, ~30 flops per channel (vectorised).
+RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
+{
+    float c = rk_saturate(cos_i);
+    float c2 = c * c;
+    float s2 = (1.0f - c) * (1.0f + c);
+    vec3 n = clamp(eta, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
+    vec3 kk = clamp(k, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
+    vec3 n2 = n * n;
+    vec3 k2 = kk * kk;
+    // eta^2 - k^2 - sin^2 written as (eta - 1)(eta + 1) - k^2 + cos^2: no cancellation at
+    // matched indices near grazing, where 1 - cos^2 rounds to 1.
+    vec3 t0 = (n - vec3(1.0f)) * (n + vec3(1.0f)) - k2 + vec3(c2);
+    vec3 a2b2 = sqrt(t0 * t0 + 4.0f * n2 * k2);
+    vec3 a = sqrt(max(0.5f * (a2b2 + t0), vec3(0.0f)));
+    vec3 t1 = a2b2 + vec3(c2);
+    vec3 t2 = (2.0f * c) * a;
+    vec3 rs = (t1 - t2) / max(t1 + t2, vec3(RK_FLT_MIN));
+    vec3 t3 = c2 * a2b2 + vec3(s2 * s2);
+    vec3 t4 = t2 * s2;
+    vec3 rp = rs * (t3 - t4) / max(t3 + t4, vec3(RK_FLT_MIN));
+    return clamp(0.5f * (rs + rp), vec3(0.0f), vec3(1.0f));
+}
+
+/// rk_fresnel_conductor (scalar): one channel of the RGB form (same math, 1/3 of the lanes used).
+RK_INLINE float rk_fresnel_conductor(float cos_i, float eta, float k)
+{
+    return rk_fresnel_conductor(cos_i, vec3(eta), vec3(k)).x;
+}
+
+/// rk_critical_cos: cosine of the critical angle for eta = n_t / n_i < 1, i.e. sqrt(1 - eta^2);
+/// 0 when eta >= 1 (no total internal reflection before grazing). A ray with cos_i below it is
+/// totally reflected. Cheaper than comparing angles. Max error: 2 ulp. Cost: 1 sqrt.
+RK_INLINE float rk_critical_cos(float eta)
+{
+    float e = rk_saturate(eta);
+    return sqrt((1.0f - e) * (1.0f + e));
+}
+
+/// rk_critical_angle: critical angle asin(eta) in radians for eta = n_t / n_i < 1
+/// (glass -> air, n = 1.52: 0.718023 rad = 41.1395°); pi/2 when eta >= 1 (no TIR).
+/// Max error: that of asin (GLSL: implementation-defined, ~1e-6 rad on tested drivers).
+/// Cost: 1 asin.
+RK_INLINE float rk_critical_angle(float eta)
+{
+    return asin(rk_saturate(eta));
+}
+
+/// rk_brewster_angle: angle where Rp = 0, atan(eta) in radians (n = 1.52: 0.988898 rad =
+/// 56.6593°). Domain: eta clamped to [1/4096, 4096]. Cost: 1 atan.
+RK_INLINE float rk_brewster_angle(float eta)
+{
+    return atan(rk_fresnel_clamp_eta(eta));
+}
+
+/// rk_refract: refraction direction through an interface with relative index eta = n_t / n_i
+/// (the inverse of GLSL refract()'s argument). `incident` is the direction of travel and
+/// `normal` the unit normal on the incident side (dot(incident, normal) <= 0). Returns true and
+/// writes the refracted direction to `transmitted`; under total internal reflection returns false
+/// and writes the mirror direction reflect(incident, normal) instead of a zero vector, so the
+/// caller always has a usable ray. Unit inputs give a unit output within 4 ulp.
+/// Domain: any finite vectors; cos is clamped to [0, 1] (a normal facing the wrong way is treated
+/// as grazing incidence). Cost: 1 sqrt, 1 div, ~15 flops.
+RK_INLINE bool rk_refract(vec3 incident, vec3 normal, float eta, RK_OUT(vec3) transmitted)
+{
+    float c = rk_saturate(-dot(normal, incident));
+    float e = rk_fresnel_clamp_eta(eta);
+    float g2 = (e - 1.0f) * (e + 1.0f) + c * c;
+    if (g2 < 0.0f) {
+        transmitted = incident + (2.0f * c) * normal;
+        return false;
+    }
+    transmitted = (incident + (c - sqrt(g2)) * normal) / e;
+    return true;
+}
+
+/// rk_fresnel_slab: reflectance of a non-absorbing pane (two parallel surfaces, incoherent
+/// multiple reflections) from the single-surface reflectance R: 2R / (1 + R) (thesis Eq. 3.8).
+/// Domain: R clamped to [0, 1]. Exact (3 ulp). Cost: 1 div, 2 flops. Slab(F0(1.52)) = 0.0816820.
+RK_INLINE float rk_fresnel_slab(float r)
+{
+    float x = rk_saturate(r);
+    return 2.0f * x / (1.0f + x);
+}
+
+/// rk_fresnel_slab_sp: the pane reflectance with the series summed per polarisation,
+/// (slab(Rs) + slab(Rp)) / 2: the physically right order. The thesis's slab of the average
+/// overestimates by up to 0.0236 for n = 1.52 (60°-75°). Cost: 2 div, 6 flops.
+RK_INLINE float rk_fresnel_slab_sp(vec2 rsp)
+{
+    return 0.5f * (rk_fresnel_slab(rsp.x) + rk_fresnel_slab(rsp.y));
+}
+
+/// rk_fresnel_glazing: N identical non-absorbing panes (2N surfaces, incoherent):
+/// 2N R / (1 + (2N - 1) R). N = 1 is rk_fresnel_slab; two panes at 0° for n = 1.52: 0.1510277.
+/// Domain: R clamped to [0, 1], panes to [0, 1e6] (real-valued N allowed; 0 gives 0).
+/// Exact (4 ulp). Cost: 1 div, 5 flops.
+RK_INLINE float rk_fresnel_glazing(float r, float panes)
+{
+    float x = rk_saturate(r);
+    float n2 = 2.0f * clamp(panes, 0.0f, 1e6f);
+    // 1 + (2N - 1) R as (1 - R) + 2N R: no cancellation when R -> 1 with few panes.
+    return n2 * x / max((1.0f - x) + n2 * x, RK_FLT_MIN);
+}
+
+/// rk_fresnel_glazing_sp: N panes with the series summed per polarisation. Cost: 2 div, 12 flops.
+RK_INLINE float rk_fresnel_glazing_sp(vec2 rsp, float panes)
+{
+    return 0.5f * (rk_fresnel_glazing(rsp.x, panes) + rk_fresnel_glazing(rsp.y, panes));
+}
+
+/// rk_fresnel_window: window-glass reflectance selected at compile time by
+/// RK_FRESNEL_WINDOW_MODE (see the file header), so a shader pays only for the model it uses.
+/// `panes` is read by mode 3 only. Cost: that of rk_fresnel_dielectric_sp plus the slab.
+RK_INLINE float rk_fresnel_window(float cos_i, float eta, float panes)
+{
+#if RK_FRESNEL_WINDOW_MODE != 3
+    RK_UNUSED(panes);
+#endif
+#if RK_FRESNEL_WINDOW_MODE == 0
+    return rk_fresnel_dielectric(cos_i, eta);
+#elif RK_FRESNEL_WINDOW_MODE == 1
+    return rk_fresnel_slab(rk_fresnel_dielectric(cos_i, eta));
+#elif RK_FRESNEL_WINDOW_MODE == 2
+    return rk_fresnel_slab_sp(rk_fresnel_dielectric_sp(cos_i, eta));
+#else
+    return rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes);
+#endif
+}
+
+#endif  // RK_FRESNEL_GLSL
