@@ -1,0 +1,186 @@
+// raykit GPU parity harness: runs a shared function in an OpenGL 4.5 compute shader on a real
+// driver (Mesa llvmpipe in CI, a GPU when present) over thousands of ordinary and adversarial
+// inputs and compares every output with the C++ build of the very same .glsl text.
+//
+// Adding a case is one RK_PARITY entry: the body is written once and used twice — stringised
+// into the compute shader and compiled as the C++ lambda — so the GPU and CPU run identical code:
+//
+//   RK_PARITY("rk_fresnel_schlick", "raykit/fresnel.glsl", (dom::cosine(), dom::unit()), 1,
+//             o[0] = rk_fresnel_schlick(a[0], a[1]);)
+//
+// `a` holds the inputs (float[n_in]), `o` the outputs (float[n_out]); both languages index them
+// the same way. Outputs are compared with |gpu - cpu| <= abs_tol + rel_tol * |cpu|, and every
+// GPU output must be finite.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "rk_gl.hpp"
+#include "test_util.hpp"
+
+namespace parity {
+
+/// An input's domain: a random range plus special values that are always included.
+struct Domain {
+    float lo = 0.0f, hi = 1.0f;
+    bool log_scale = false;        // draw log-uniformly in [lo, hi] (lo > 0)
+    std::vector<float> specials;   // domain-specific edge values (critical angles, ...)
+};
+
+/// Edge values every input also receives: zeros of both signs, denormals, the smallest normal,
+/// 1 and its neighbours, huge values. "Any finite input" is the contract of every rk_ function.
+inline const std::vector<float>& adversarial()
+{
+    static const std::vector<float> v = {0.0f, -0.0f, 1e-45f, -1e-45f, 1e-40f, -1e-40f, 1.17549435e-38f,
+                                         -1.17549435e-38f, 1.0f, std::nextafter(1.0f, 0.0f), std::nextafter(1.0f, 2.0f),
+                                         -1.0f, 0.5f, 2.0f, 1e-20f, -1e-20f, 1e20f, -1e20f, 1e30f, -1e30f,
+                                         3.4028235e38f, -3.4028235e38f};
+    return v;
+}
+
+namespace dom {
+inline Domain cosine() { return {0.0f, 1.0f, false, {0.7597469f, 0.9682458f, 0.5547002f, 0.0871557f}}; }
+inline Domain unit() { return {0.0f, 1.0f, false, {0.04f, 0.0425800f}}; }
+inline Domain eta() { return {0.25f, 4.0f, true, {1.52f, 1.0f / 1.52f, 1.33f, 1.0f / 1.33f, 1.0000001f}}; }
+inline Domain signed_unit() { return {-1.0f, 1.0f, false, {}}; }
+inline Domain range(float lo, float hi) { return {lo, hi, false, {}}; }
+}  // namespace dom
+
+struct Case {
+    std::string name;
+    std::string include;                     // e.g. "raykit/fresnel.glsl"
+    std::vector<Domain> inputs;
+    int n_out;
+    std::string glsl_body;
+    std::function<void(const float*, float*)> cpu;
+    double abs_tol = 2e-6, rel_tol = 2e-5;
+    std::vector<raykit::ShaderDefine> defines;
+};
+
+#define RK_PARITY_LIST(...) __VA_ARGS__
+#define RK_PARITY(NAME, INCLUDE, DOMAINS, NOUT, ...)                                                   \
+    parity::Case { NAME, INCLUDE, std::vector<parity::Domain>{RK_PARITY_LIST DOMAINS}, NOUT, #__VA_ARGS__, \
+                   [](const float* a, float* o) { (void)a; (void)o; __VA_ARGS__ }, 2e-6, 2e-5, {} }
+
+/// Builds the input table: `random_rows` rows drawn from the domains, then for every input and
+/// every special (domain-specific and adversarial) a row with that input set and the others random.
+inline std::vector<float> make_inputs(const Case& c, int random_rows, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    const size_t n_in = c.inputs.size();
+    auto draw = [&](const Domain& d) {
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        if (d.log_scale) return d.lo * std::pow(d.hi / d.lo, u(rng));
+        return d.lo + (d.hi - d.lo) * u(rng);
+    };
+    std::vector<float> rows;
+    auto add_row = [&](size_t fixed, float value) {
+        for (size_t k = 0; k < n_in; ++k) rows.push_back(k == fixed ? value : draw(c.inputs[k]));
+    };
+    for (int r = 0; r < random_rows; ++r) add_row(n_in, 0.0f);
+    for (size_t k = 0; k < n_in; ++k) {
+        std::vector<float> specials = c.inputs[k].specials;
+        specials.insert(specials.end(), adversarial().begin(), adversarial().end());
+        for (float s : specials) {
+            for (int rep = 0; rep < 8; ++rep) add_row(k, s);
+        }
+    }
+    // All inputs adversarial at once.
+    for (int r = 0; r < 512; ++r) {
+        for (size_t k = 0; k < n_in; ++k) rows.push_back(adversarial()[static_cast<size_t>(rng()) % adversarial().size()]);
+    }
+    return rows;
+}
+
+inline std::string compute_source(const Case& c)
+{
+    const size_t n_in = c.inputs.size();
+    std::string s = "#version 450 core\n";
+    s += "#extension GL_GOOGLE_include_directive : require\n";
+    s += "layout(local_size_x = 64) in;\n";
+    s += "layout(std430, binding = 0) readonly buffer Inputs { float rk_in[]; };\n";
+    s += "layout(std430, binding = 1) writeonly buffer Outputs { float rk_out[]; };\n";
+    s += "layout(location = 0) uniform uint rk_rows;\n";
+    s += "#include \"" + c.include + "\"\n";
+    s += "void main() {\n  uint i = gl_GlobalInvocationID.x;\n  if (i >= rk_rows) return;\n";
+    s += "  float a[" + std::to_string(n_in) + "];\n";
+    s += "  for (uint k = 0u; k < " + std::to_string(n_in) + "u; ++k) a[k] = rk_in[i * " + std::to_string(n_in) + "u + k];\n";
+    s += "  float o[" + std::to_string(c.n_out) + "];\n";
+    s += "  for (uint k = 0u; k < " + std::to_string(c.n_out) + "u; ++k) o[k] = 0.0;\n";
+    s += "  { " + c.glsl_body + " }\n";
+    s += "  for (uint k = 0u; k < " + std::to_string(c.n_out) + "u; ++k) rk_out[i * " + std::to_string(c.n_out) + "u + k] = o[k];\n";
+    s += "}\n";
+    return s;
+}
+
+struct Result {
+    bool ok = true;
+    long rows = 0, mismatches = 0, non_finite = 0;
+    double max_abs = 0, max_ulp = 0;
+    std::string worst;
+};
+
+/// Runs one case on the current GL context and on the CPU; prints a one-line report.
+inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096)
+{
+    const size_t n_in = c.inputs.size();
+    const size_t n_out = static_cast<size_t>(c.n_out);
+    const std::vector<float> in = make_inputs(c, random_rows, 20261122u);
+    const size_t rows = in.size() / n_in;
+
+    std::string src = raykit::inject_shader_defines(compute_source(c), c.defines);
+    src = raykit::resolve_shader_includes(src, c.name + ".comp", shader_dir, {shader_dir});
+    GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
+    GLuint bin = rkgl::make_buffer(in.size() * sizeof(float), in.data());
+    GLuint bout = rkgl::make_buffer(rows * n_out * sizeof(float), nullptr);
+    glUseProgram(prog);
+    glUniform1ui(0, static_cast<GLuint>(rows));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bin);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bout);
+    glDispatchCompute(static_cast<GLuint>((rows + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::vector<float> gpu = rkgl::read_floats(bout, rows * n_out);
+    glDeleteBuffers(1, &bin);
+    glDeleteBuffers(1, &bout);
+    glDeleteProgram(prog);
+
+    Result r;
+    r.rows = static_cast<long>(rows);
+    std::vector<float> cpu(n_out);
+    for (size_t i = 0; i < rows; ++i) {
+        std::fill(cpu.begin(), cpu.end(), 0.0f);
+        c.cpu(&in[i * n_in], cpu.data());
+        for (size_t k = 0; k < n_out; ++k) {
+            const float g = gpu[i * n_out + k], h = cpu[k];
+            const double err = std::abs(static_cast<double>(g) - h);
+            const bool finite = std::isfinite(g);
+            const bool bad = !finite || !std::isfinite(h) || err > c.abs_tol + c.rel_tol * std::abs(h);
+            r.non_finite += finite ? 0 : 1;
+            r.mismatches += bad ? 1 : 0;
+            const double ulp = rktest::ulp_distance(g, h);
+            if (err > r.max_abs || (!finite && r.max_abs != std::numeric_limits<double>::infinity())) {
+                r.max_abs = finite ? err : std::numeric_limits<double>::infinity();
+                std::string w = "in (";
+                for (size_t j = 0; j < n_in; ++j) w += rktest::fmt(in[i * n_in + j]);
+                w += ") out[" + std::to_string(k) + "] gpu " + rktest::fmt(g) + "cpu " + rktest::fmt(h);
+                r.worst = w;
+            }
+            r.max_ulp = std::max(r.max_ulp, ulp);
+        }
+    }
+    r.ok = r.mismatches == 0;
+    std::printf("[parity] %-44s rows %6ld  max abs %.3g  max ulp %.3g  mismatches %ld  non-finite %ld%s%s\n",
+                c.name.c_str(), r.rows, r.max_abs, r.max_ulp, r.mismatches, r.non_finite,
+                r.worst.empty() ? "" : "\n         worst: ", r.worst.c_str());
+    return r;
+}
+
+}  // namespace parity
