@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Sets up every dependency, builds the samples and renders them headlessly (EGL) to PNG in out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build --target fresnel_curves -j"$(nproc)"
+mkdir -p out
+./build/samples/fresnel_curves out/fresnel_curves.png
+echo "demo: wrote $(ls out/*.png | tr '\n' ' ')"
