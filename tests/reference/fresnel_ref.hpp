@@ -69,6 +69,11 @@ inline double stack_surfaces(double r, int surfaces)
     double R = 0.0, T = 1.0;
     for (int i = 0; i < surfaces; ++i) {
         const double d = 1.0 - R * r;
+        if (d <= 0.0) {  // two perfect mirrors: everything is reflected
+            R = 1.0;
+            T = 0.0;
+            continue;
+        }
         const double nr = R + T * T * r / d;
         T = T * (1.0 - r) / d;
         R = nr;

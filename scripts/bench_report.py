@@ -1,0 +1,451 @@
+#!/usr/bin/env python3
+"""Turns raykit_bench's Google Benchmark JSON into docs/benchmarks.md and a speed-vs-error plot.
+
+Usage: python3 scripts/bench_report.py --json build/bench.json [--out-dir docs]
+
+Writes OUT_DIR/benchmarks.md (machine context, one table per family), OUT_DIR/img/bench_fresnel.dat
+and, when gnuplot is on PATH, OUT_DIR/img/bench_fresnel_speed_error.png. Pure standard library.
+
+Everything the report says about a benchmark comes from the JSON written by bench/bench_fresnel.cpp:
+  name     BM_fresnel/<variant>/<parameters>
+  label    "<family>|<function>|<what the error is measured against>"
+  counters items_per_second, max_abs_err, mean_abs_err, max_ulp (optional), worst_at
+  context  raykit_family:<family> = title, raykit_baseline, raykit_plot_families, raykit_build_type...
+With --benchmark_repetitions the median aggregate is used (and the cv aggregate, when present, is
+shown as the run-to-run spread); without, the median of whatever iteration runs there are.
+"""
+
+import argparse
+import json
+import math
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+
+DEFAULT_BASELINE = "BM_fresnel/schlick/eta:1.52"
+PNG_NAME = "bench_fresnel_speed_error.png"
+DAT_NAME = "bench_fresnel.dat"
+
+
+# ------------------------------------------------------------------------------------------------
+# Reading the JSON
+
+
+class Row:
+    """One benchmark (all repetitions folded into one value)."""
+
+    def __init__(self, name, entry):
+        self.name = name
+        parts = name.split("/")
+        self.variant = parts[1] if len(parts) > 1 else name
+        self.params = "/".join(parts[2:])
+        label = entry.get("label", "")
+        fields = label.split("|") if label else []
+        self.family = fields[0] if len(fields) > 0 and fields[0] else "other"
+        self.function = fields[1] if len(fields) > 1 else self.variant
+        self.against = fields[2] if len(fields) > 2 else ""
+        self.max_abs = entry.get("max_abs_err")
+        self.mean_abs = entry.get("mean_abs_err")
+        self.max_ulp = entry.get("max_ulp")
+        self.worst_at = entry.get("worst_at")
+        self.ns = ns_per_call(entry)
+        self.cv = None  # relative run-to-run spread of the time, when repetitions were aggregated
+        self.reps = 1
+        # Registration order (stable even with --benchmark_enable_random_interleaving).
+        self.order = (entry.get("family_index", 0), entry.get("per_family_instance_index", 0))
+
+
+def ns_per_call(entry):
+    ips = entry.get("items_per_second")
+    if ips:
+        return 1e9 / ips
+    tpc = entry.get("time_per_call")
+    if tpc:
+        return tpc * 1e9
+    return None
+
+
+def load(path):
+    with open(path, encoding="utf-8") as f:
+        data = json.load(f)
+    context = data.get("context", {})
+    entries = data.get("benchmarks", [])
+
+    order = []  # run names in first-seen order
+    iterations = {}
+    medians = {}
+    cvs = {}
+    for e in entries:
+        if e.get("error_occurred"):
+            continue
+        run = e.get("run_name", e.get("name", ""))
+        if run not in order:
+            order.append(run)
+        if e.get("run_type") == "aggregate":
+            agg = e.get("aggregate_name")
+            if agg == "median":
+                medians[run] = e
+            elif agg == "cv":
+                cvs[run] = e
+        else:
+            iterations.setdefault(run, []).append(e)
+
+    rows = []
+    for run in order:
+        if run in medians:
+            row = Row(run, medians[run])
+            row.reps = medians[run].get("repetitions", 1)
+            cv = cvs.get(run)
+            if cv is not None and cv.get("cpu_time") is not None:
+                row.cv = cv["cpu_time"]  # a fraction (aggregate_unit "percentage")
+        elif run in iterations:
+            runs = iterations[run]
+            row = Row(run, runs[0])
+            times = [t for t in (ns_per_call(r) for r in runs) if t is not None]
+            row.ns = statistics.median(times) if times else None
+            row.reps = len(runs)
+            if len(times) > 1 and row.ns:
+                row.cv = statistics.stdev(times) / statistics.mean(times)
+        else:
+            continue
+        rows.append(row)
+    rows.sort(key=lambda r: r.order)  # stable: equal keys keep first-seen order
+    return context, rows
+
+
+# ------------------------------------------------------------------------------------------------
+# Formatting
+
+
+def fmt_err(v):
+    if v is None:
+        return "—"
+    if v == 0:
+        return "0"
+    if math.isinf(v) or math.isnan(v):
+        return str(v)
+    return "%.2e" % v
+
+
+def fmt_ns(row):
+    if row.ns is None:
+        return "—"
+    s = "%.2f" % row.ns
+    if row.cv is not None:
+        s += " ±%.0f%%" % (100.0 * row.cv)
+    return s
+
+
+def fmt_function(text):
+    # "rk_x(a, b) [note]" -> `rk_x(a, b)` note
+    if "[" in text:
+        code, note = text.split("[", 1)
+        return "`%s` %s" % (code.strip(), note.rstrip("]").strip())
+    return "`%s`" % text
+
+
+def family_title(context, family):
+    return context.get("raykit_family:" + family, family)
+
+
+def short_title(context, family):
+    title = family_title(context, family)
+    return title.split(":", 1)[0].strip() if ":" in title else title
+
+
+def md_escape(text):
+    return text.replace("|", "\\|")
+
+
+def machine_table(context, rows):
+    lines = ["| | |", "|---|---|"]
+
+    def add(key, value):
+        lines.append("| %s | %s |" % (key, md_escape(str(value))))
+
+    add("host", context.get("host_name", "?"))
+    cpus = context.get("num_cpus", "?")
+    mhz = context.get("mhz_per_cpu", "?")
+    add("CPUs", "%s × %s MHz (CPU frequency scaling: %s)" % (
+        cpus, mhz, "enabled" if context.get("cpu_scaling_enabled") else "disabled"))
+    caches = context.get("caches") or []
+    if caches:
+        parts = []
+        for c in caches:
+            size = c.get("size", 0)
+            size_s = "%d MiB" % (size // 1048576) if size >= 1048576 else "%d KiB" % (size // 1024)
+            parts.append("L%s %s %s" % (c.get("level", "?"), c.get("type", ""), size_s))
+        add("caches", ", ".join(parts))
+    if context.get("load_avg"):
+        add("load average at start", ", ".join("%.2f" % v for v in context["load_avg"]))
+    add("date", context.get("date", "?"))
+    add("raykit build", "%s, %s" % (context.get("raykit_build_type", "?"), context.get("raykit_compiler", "?")))
+    add("Google Benchmark library build type", "%s (the harness library as packaged, not the measured code)"
+        % context.get("library_build_type", "?"))
+    reps = max((r.reps for r in rows), default=1)
+    add("repetitions", "%d (median shown; ± is the run-to-run coefficient of variation)" % reps if reps > 1 else "1")
+    add("calls per iteration", context.get("raykit_inputs_per_iteration", "?"))
+    add("accuracy sweep points", context.get("raykit_sweep_points", "?"))
+    return lines
+
+
+# ------------------------------------------------------------------------------------------------
+# Plot
+
+
+def plot_families(context, rows):
+    present = []
+    for r in rows:
+        if r.family not in present:
+            present.append(r.family)
+    wanted = [f for f in context.get("raykit_plot_families", "").split(",") if f]
+    fams = [f for f in wanted if f in present] if wanted else present
+    return [f for f in fams if any(plottable(r) for r in rows if r.family == f)]
+
+
+def plottable(r):
+    return r.ns is not None and r.max_abs is not None and math.isfinite(r.max_abs)
+
+
+def layout_labels(points, xlo, xhi, ylo, yhi, plot_w_px, plot_h_px):
+    """Places one label per point (both axes log) so labels do not overlap each other.
+
+    Returns [(lx, ly, align)] in data coordinates. Greedy: each label goes right of its point
+    (left of it near the right edge), moved up or down in line-height steps until its box is free.
+    """
+    char_w, line_h, gap = 6.8 / plot_w_px, 15.0 / plot_h_px, 10.0 / plot_w_px
+    pad_x, pad_y = 9.0 / plot_w_px, 6.0 / plot_h_px  # a point marker's radius plus a little
+    lx0, lx1 = math.log10(xlo), math.log10(xhi)
+
+    def nx(x):
+        return (math.log10(x) - lx0) / (lx1 - lx0)
+
+    ly0, ly1 = math.log10(ylo), math.log10(yhi)
+
+    def ny(y):
+        return (math.log10(y) - ly0) / (ly1 - ly0)
+
+    boxes = []  # placed label boxes (x0, x1, y0, y1) in normalised plot coordinates
+    marks = [(nx(x), ny(y)) for x, y, _ in points]
+    placed = [None] * len(points)
+    for i in sorted(range(len(points)), key=lambda k: (points[k][1], points[k][0])):
+        x, y, text = points[i]
+        px, py = nx(x), ny(y)
+        w = char_w * len(text)
+        align = "left" if px + gap + w < 0.98 else "right"
+        x0 = px + gap if align == "left" else px - gap - w
+        best = None
+        for step in range(0, 40):
+            for sign in ((0,) if step == 0 else (1, -1)):
+                cy = py + sign * step * line_h * 0.5
+                if cy < line_h * 0.5 or cy > 1.0 - line_h * 0.5:
+                    continue
+                box = (x0, x0 + w, cy - line_h * 0.45, cy + line_h * 0.45)
+                clash = any(b[0] < box[1] and box[0] < b[1] and b[2] < box[3] and box[2] < b[3] for b in boxes)
+                clash = clash or any(
+                    j != i and box[0] - pad_x < mx < box[1] + pad_x and box[2] - pad_y < my < box[3] + pad_y
+                    for j, (mx, my) in enumerate(marks))
+                if not clash:
+                    best = (box, cy)
+                    break
+            if best:
+                break
+        if best is None:
+            best = ((x0, x0 + w, py - line_h * 0.45, py + line_h * 0.45), py)
+        boxes.append(best[0])
+        ax = best[0][0] if align == "left" else best[0][1]
+        lx = 10 ** (lx0 + ax * (lx1 - lx0))
+        ly = 10 ** (ly0 + best[1] * (ly1 - ly0))
+        placed[i] = (lx, ly, align)
+    return placed
+
+
+def write_plot(context, rows, img_dir):
+    fams = plot_families(context, rows)
+    if not fams:
+        print("bench_report: nothing to plot", file=sys.stderr)
+        return None
+    os.makedirs(img_dir, exist_ok=True)
+    dat_path = os.path.join(img_dir, DAT_NAME)
+    png_path = os.path.join(img_dir, PNG_NAME)
+
+    ncols = 2 if len(fams) > 1 else 1
+    nrows = (len(fams) + ncols - 1) // ncols
+    panel_w, panel_h = 760, 520
+    plot_w_px, plot_h_px = panel_w - 150, panel_h - 120
+
+    blocks, panels = [], []
+    for fam in fams:
+        pts = [r for r in rows if r.family == fam and plottable(r)]
+        errs = [r.max_abs for r in pts if r.max_abs > 0]
+        floor = min(errs) / 2 if errs else 1e-9
+        xs = [max(r.max_abs, floor) for r in pts]
+        ys = [r.ns for r in pts]
+        xlo = 10 ** math.floor(math.log10(min(xs)) - 0.3)
+        xhi = 10 ** math.ceil(math.log10(max(xs)) + 0.3)
+        ylo = 10 ** math.floor(math.log10(min(ys) / 1.3))
+        yhi = max(ys) * 2.0
+        labels = layout_labels([(x, y, r.variant) for x, y, r in zip(xs, ys, pts)], xlo, xhi, ylo, yhi,
+                               plot_w_px, plot_h_px)
+        lines = ["# family %s: %s" % (fam, family_title(context, fam)),
+                 "# max_abs_err ns_per_call label_x label_y align(0 left, 1 right) variant"]
+        for x, y, r, (lx, ly, align) in zip(xs, ys, pts, labels):
+            lines.append("%.6e %.6f %.6e %.6f %d \"%s\"" % (x, y, lx, ly, 0 if align == "left" else 1, r.variant))
+        blocks.append("\n".join(lines))
+        panels.append((fam, xlo, xhi, ylo, yhi))
+
+    with open(dat_path, "w", encoding="utf-8") as f:
+        f.write("# raykit_bench: speed vs error, written by scripts/bench_report.py (one block per family)\n")
+        f.write("\n\n\n".join(blocks) + "\n")
+
+    if shutil.which("gnuplot") is None:
+        print("bench_report: warning: gnuplot not found on PATH, %s not drawn" % PNG_NAME, file=sys.stderr)
+        return None
+
+    g = []
+    g.append("set terminal pngcairo size %d,%d font 'Sans,10' enhanced" % (panel_w * ncols, panel_h * nrows))
+    g.append("set output '%s'" % png_path.replace("'", "''"))
+    g.append("set multiplot layout %d,%d title 'raykit fresnel.glsl: CPU time per call vs max abs error "
+             "(median of repetitions; CPU times are ratios only)' font 'Sans,13'" % (nrows, ncols))
+    g.append("set logscale xy")
+    g.append("set format x '10^{%L}'")
+    g.append("set grid xtics ytics mytics lc rgb '#dddddd'")
+    g.append("set ytics (0.5, 1, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000)")
+    g.append("set key off")
+    g.append("set xlabel 'max abs error vs exact (log scale)'")
+    g.append("set ylabel 'ns / call (CPU, log scale)'")
+    g.append("set tmargin 3")
+    dat = dat_path.replace("'", "''")
+    for idx, (fam, xlo, xhi, ylo, yhi) in enumerate(panels):
+        g.append("set title '%s' font 'Sans,11'" % short_title(context, fam).replace("'", "''"))
+        g.append("set xrange [%g:%g]" % (xlo, xhi))
+        g.append("set yrange [%g:%g]" % (ylo, yhi))
+        g.append(
+            "plot '{d}' index {i} using 1:(abs($4/$2-1) > 0.01 ? $2 : 1/0):($3-$1):($4-$2) "
+            "with vectors nohead lc rgb '#aaaaaa' notitle, \\\n"
+            "  '{d}' index {i} using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' notitle, \\\n"
+            "  '{d}' index {i} using 3:($5 == 0 ? $4 : 1/0):6 with labels left font 'Sans,9' noenhanced notitle, \\\n"
+            "  '{d}' index {i} using 3:($5 == 1 ? $4 : 1/0):6 with labels right font 'Sans,9' noenhanced notitle"
+            .format(d=dat, i=idx))
+    g.append("unset multiplot")
+    script = "\n".join(g) + "\n"
+    res = subprocess.run(["gnuplot"], input=script, text=True, capture_output=True)
+    if res.returncode != 0 or not os.path.exists(png_path):
+        print("bench_report: warning: gnuplot failed:\n" + res.stderr, file=sys.stderr)
+        return None
+    if res.stderr.strip():
+        print("bench_report: gnuplot said:\n" + res.stderr, file=sys.stderr)
+    return png_path
+
+
+# ------------------------------------------------------------------------------------------------
+# Markdown
+
+
+def write_markdown(context, rows, out_dir, png):
+    baseline_name = context.get("raykit_baseline", DEFAULT_BASELINE)
+    base = next((r for r in rows if r.name == baseline_name and r.ns), None)
+
+    families = []
+    for r in rows:
+        if r.family not in families:
+            families.append(r.family)
+
+    md = []
+    md.append("# raykit benchmarks")
+    md.append("")
+    md.append("<!-- Generated by scripts/bench_report.py from raykit_bench's JSON. Do not edit by hand. -->")
+    md.append("")
+    md.append("Reproduce with `bash scripts/bench.sh` (Release build of `bench/bench_fresnel.cpp`, 3 repetitions, "
+              "then `python3 scripts/bench_report.py --json build/bench.json --out-dir docs`, which rewrites this "
+              "file and `img/bench_fresnel_speed_error.png`).")
+    md.append("")
+    md.append("## Machine")
+    md.append("")
+    md.extend(machine_table(context, rows))
+    md.append("")
+    md.append("## How to read the tables")
+    md.append("")
+    md.append("- **ns/call**: CPU time per call, throughput over a pre-generated array of independent inputs "
+              "(each call's arguments, material constants included, are loaded per call, so nothing per-material "
+              "is hoisted out of the loop). Only the *ratios* between rows mean anything; absolute CPU times "
+              "are not the point (see [GPU figures](#gpu-figures)).")
+    if base:
+        md.append("- **relative cost**: ns/call divided by that of `%s` (`%s`) = 1.0."
+                  % (base.name, base.function.split("[")[0].strip()))
+    else:
+        md.append("- **relative cost**: not available (baseline `%s` not in this run)." % baseline_name)
+    md.append("- **max / mean abs err**: absolute error against float64 references "
+              "(`tests/reference/fresnel_ref.hpp`, or the formula named in the last column) over a dense sweep of "
+              "the input range, computed once outside the timing. Approximations (Schlick, the fast dielectric, "
+              "LUTs, the thesis's pane model) are measured against the *exact* quantity they stand in for.")
+    md.append("- **max ulp**: only where meaningful (exact functions whose result stays away from zero); "
+              "`—` for approximations.")
+    md.append("- **worst at**: the swept input (cos, eta, R or F0, see the parameters in the name) where the max "
+              "abs error occurs.")
+    md.append("")
+    md.append("## Speed vs error")
+    md.append("")
+    if png:
+        md.append("![speed vs error](img/%s)" % PNG_NAME)
+    else:
+        md.append("_(plot not drawn: gnuplot was not available when this report was generated)_")
+    md.append("")
+    for fam in families:
+        fam_rows = [r for r in rows if r.family == fam]
+        title = family_title(context, fam)
+        head, _, rest = title.partition(":")
+        md.append("## " + (head.strip() if rest else title))
+        md.append("")
+        if rest:
+            md.append(rest.strip()[0].upper() + rest.strip()[1:] + ".")
+            md.append("")
+        md.append("| function | benchmark | ns/call | relative cost | max abs err | mean abs err | max ulp | worst at "
+                  "| error against |")
+        md.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
+        for r in fam_rows:
+            rel = "%.2f" % (r.ns / base.ns) if (base and r.ns) else "—"
+            md.append("| %s | `%s` | %s | %s | %s | %s | %s | %s | %s |" % (
+                md_escape(fmt_function(r.function)),
+                md_escape(r.variant + ("/" + r.params if r.params else "")),
+                fmt_ns(r), rel, fmt_err(r.max_abs), fmt_err(r.mean_abs),
+                "%.1f" % r.max_ulp if r.max_ulp is not None else "—",
+                "%.4g" % r.worst_at if r.worst_at is not None else "—",
+                md_escape(r.against)))
+        md.append("")
+    md.append("## GPU figures")
+    md.append("")
+    md.append("None were recorded yet on a GPU. The CPU times above are ratios only: on a GPU, `sqrt`, division "
+              "and `asin`/`atan` have different relative costs, a LUT is a texture fetch through the texture unit "
+              "rather than two loads and a lerp, and the total-internal-reflection branch costs divergence rather "
+              "than mispredictions. The error columns, on the other hand, carry over (same source, IEEE float32), "
+              "up to the driver's `sqrt`/division/`asin` precision.")
+    md.append("")
+
+    path = os.path.join(out_dir, "benchmarks.md")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(md))
+    return path
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--json", required=True, help="Google Benchmark JSON output of raykit_bench")
+    ap.add_argument("--out-dir", default="docs", help="where benchmarks.md and img/ go (default: docs)")
+    args = ap.parse_args(argv)
+
+    context, rows = load(args.json)
+    if not rows:
+        print("bench_report: no benchmarks in %s" % args.json, file=sys.stderr)
+        return 1
+    os.makedirs(args.out_dir, exist_ok=True)
+    png = write_plot(context, rows, os.path.join(args.out_dir, "img"))
+    md = write_markdown(context, rows, args.out_dir, png)
+    print("bench_report: wrote %s (%d benchmarks)%s" % (md, len(rows), ", %s" % png if png else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
