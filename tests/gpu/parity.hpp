@@ -128,6 +128,9 @@ struct Result {
     std::string worst;
 };
 
+/// The folder holding raykit/*.glsl (compile definition of the test target).
+inline std::string shader_dir() { return RAYKIT_SHADER_DIR; }
+
 /// Runs one case on the current GL context and on the CPU; prints a one-line report.
 inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096)
 {

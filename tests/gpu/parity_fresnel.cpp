@@ -1,9 +1,6 @@
-// GPU parity: every shared function of shaders/raykit/*.glsl run in an OpenGL 4.5 compute shader
-// (headless EGL) against its C++ build. Exit code 77 (ctest: skipped) when no EGL/GL 4.5 device
-// exists — except with CI=true, where a missing device is a failure.
+// GPU parity cases for shaders/raykit/common.glsl and fresnel.glsl (see parity.hpp).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <string>
 
 #include "parity.hpp"
@@ -14,8 +11,6 @@ using parity::Domain;
 namespace dom = parity::dom;
 
 namespace {
-
-const std::string kShaderDir = RAYKIT_SHADER_DIR;
 
 std::vector<parity::Case> fresnel_cases()
 {
@@ -87,7 +82,7 @@ TEST(GpuParity, Fresnel)
 {
     long rows = 0;
     for (const parity::Case& c : fresnel_cases()) {
-        const parity::Result r = parity::run(c, kShaderDir);
+        const parity::Result r = parity::run(c, parity::shader_dir());
         rows += r.rows;
         EXPECT_TRUE(r.ok) << c.name << ": " << r.mismatches << " mismatches, worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;
@@ -113,24 +108,8 @@ TEST(GpuParity, FresnelWindowModes)
                        "o[0] = rk_fresnel_window(a[0], a[1], a[2]);",
                        [mode, expect](const float* a, float* o) { o[0] = expect(mode, a[0], a[1], a[2]); },
                        2e-6, 2e-5, {{"RK_FRESNEL_WINDOW_MODE", std::to_string(mode)}}};
-        const parity::Result r = parity::run(c, kShaderDir, 2048);
+        const parity::Result r = parity::run(c, parity::shader_dir(), 2048);
         EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
     }
 }
 
-int main(int argc, char** argv)
-{
-    ::testing::InitGoogleTest(&argc, argv);
-    static rkgl::HeadlessContext ctx;
-    const char* ci = std::getenv("CI");
-    if (!ctx.create()) {
-        if (ci && std::string(ci) == "true") {
-            std::fprintf(stderr, "FAIL: no headless OpenGL 4.5 device under CI=true: %s\n", ctx.error().c_str());
-            return 1;
-        }
-        std::printf("SKIP: no headless OpenGL 4.5 device: %s\n", ctx.error().c_str());
-        return 77;
-    }
-    std::printf("[parity] renderer: %s\n", ctx.renderer().c_str());
-    return RUN_ALL_TESTS();
-}

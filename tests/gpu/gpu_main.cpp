@@ -1,0 +1,26 @@
+// GPU parity test driver: creates the headless OpenGL 4.5 context (EGL) once, then runs every
+// parity_*.cpp case. Exit code 77 (ctest: skipped) when no EGL/GL 4.5 device exists — except with
+// CI=true, where a missing device is a failure.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "parity.hpp"
+
+int main(int argc, char** argv)
+{
+    ::testing::InitGoogleTest(&argc, argv);
+    static rkgl::HeadlessContext ctx;
+    const char* ci = std::getenv("CI");
+    if (!ctx.create()) {
+        if (ci && std::string(ci) == "true") {
+            std::fprintf(stderr, "FAIL: no headless OpenGL 4.5 device under CI=true: %s\n", ctx.error().c_str());
+            return 1;
+        }
+        std::printf("SKIP: no headless OpenGL 4.5 device: %s\n", ctx.error().c_str());
+        return 77;
+    }
+    std::printf("[parity] renderer: %s\n", ctx.renderer().c_str());
+    return RUN_ALL_TESTS();
+}
