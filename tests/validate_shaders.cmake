@@ -4,7 +4,8 @@
 #   - GLSL ES 3.10 (front end only) when the file declares `// @rk-es 310`
 # once per stage (comp, frag) and per feature-macro variant declared in the file as
 #   // @rk-variants A=0 | A=1 B=2 | ...
-# (each `|`-separated group is one variant; the default, no macro, is always compiled too).
+# (each `|`-separated group is one variant; the default, no macro, is always compiled too),
+# in the stages named by `// @rk-stages comp frag` (default: both).
 # Any warning fails the test as well as any error. Files are globbed at test time, so a new
 # include is validated without editing CMake.
 #
@@ -48,6 +49,13 @@ foreach(rel IN LISTS files)
       list(APPEND variants "${g}")
     endforeach()
   endif()
+  # `// @rk-stages comp` restricts a file to some stages (e.g. one that declares compute
+  # buffers or uses shared memory); the default is both comp and frag.
+  set(stages comp frag)
+  if(src MATCHES "@rk-stages ([a-z ]+)")
+    string(STRIP "${CMAKE_MATCH_1}" st)
+    string(REPLACE " " ";" stages "${st}")
+  endif()
   set(es OFF)
   if(src MATCHES "@rk-es 310")
     set(es ON)
@@ -70,7 +78,7 @@ foreach(rel IN LISTS files)
         endif()
       endforeach()
     endif()
-    foreach(stage comp frag)
+    foreach(stage IN LISTS stages)
       if(stage STREQUAL "comp")
         set(body "layout(local_size_x = 1) in;\nvoid main() {}\n")
       else()
