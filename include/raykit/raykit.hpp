@@ -5,3 +5,4 @@
 #include "raykit/common.hpp"
 #include "raykit/fresnel.hpp"
 #include "raykit/shader_source.hpp"
+#include "raykit/tonemap.hpp"

@@ -66,6 +66,7 @@ using glm::pow;
 using glm::reflect;
 using glm::sign;
 using glm::sin;
+using glm::smoothstep;
 using glm::sqrt;
 using glm::step;
 using glm::tan;
