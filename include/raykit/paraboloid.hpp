@@ -1,0 +1,547 @@
+// raykit — paraboloid.hpp: the CPU build of shaders/raykit/paraboloid.glsl plus CPU-only baking:
+// cube map (six float images) -> dual-paraboloid atlas with supersampled (box-filtered) texels and
+// 2x2 box mips, the inverse (atlas -> cube) for tests, and an octahedral map for comparison.
+//
+// Every rk_* function below is compiled from the very same text the GPU runs (docs/dialect.md);
+// tests/gpu/parity_paraboloid.cpp checks that both builds agree on a real driver.
+//
+// The thesis's offline pipeline (Fahlén 2005 §3.2.3): render a high-resolution cube map per window
+// mesh, resample it into a paraboloid map, compress. bake_dual_paraboloid is step 2 for both
+// hemispheres at once (the atlas of paraboloid.glsl), filling the guard band with the
+// continuation of the projection so that the seam is invisible; sample it in a shader with
+// paraboloid_sample.glsl.
+//
+// Images: EnvImage is RGB float, row-major, row 0 first (v = 0, GL's upload order). Cube faces use
+// the OpenGL cube-map conventions (GL 4.6 §8.13 table 8.19): order +X, -X, +Y, -Y, +Z, -Z, and for
+// a face the texel (i, j) is at (s, t) = ((i + 0.5) / size, (j + 0.5) / size), so the six images
+// upload as GL_TEXTURE_CUBE_MAP_POSITIVE_X + face unchanged.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+#include "raykit/common.hpp"
+
+namespace raykit {
+#include "raykit/paraboloid.glsl"
+
+/// An RGB float image: width * height texels, 3 floats each, row-major, row 0 first.
+struct EnvImage {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+
+    EnvImage() = default;
+    EnvImage(int w, int h)
+        : width(w), height(h), rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3u, 0.0f)
+    {
+        if (w < 1 || h < 1) throw std::invalid_argument("raykit::EnvImage: width and height must be >= 1");
+    }
+    std::size_t index(int x, int y) const
+    {
+        return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3u;
+    }
+    vec3 texel(int x, int y) const
+    {
+        const std::size_t i = index(x, y);
+        return vec3(rgb[i], rgb[i + 1], rgb[i + 2]);
+    }
+    void set(int x, int y, vec3 c)
+    {
+        const std::size_t i = index(x, y);
+        rgb[i] = c.x;
+        rgb[i + 1] = c.y;
+        rgb[i + 2] = c.z;
+    }
+};
+
+/// A cube map: six square faces of `size` texels in GL order +X, -X, +Y, -Y, +Z, -Z.
+struct EnvCubeMap {
+    int size = 0;
+    std::array<EnvImage, 6> faces;
+};
+
+/// A dual-paraboloid atlas (paraboloid.glsl): levels[0] is 2 half_size x half_size, left half
+/// +z (hemi = +1), right half -z; levels[l] is the 2x2 box mip of levels[l - 1]. guard_scale is the
+/// g to pass to rk_dual_paraboloid_uv & co; lookups must stay at or below max_lod.
+struct DualParaboloidMap {
+    int half_size = 0;
+    float guard_scale = 1.0f;
+    float max_lod = 0.0f;
+    std::vector<EnvImage> levels;
+};
+
+/// An octahedral map (Cigolle et al. 2014, "A Survey of Efficient Representations for Independent
+/// Unit Vectors", +z hemisphere in the inner diamond), size x size texels, for comparison.
+struct OctahedralMap {
+    int size = 0;
+    EnvImage image;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Filtering helpers
+
+/// Bilinear lookup at uv (texel centres at (i + 0.5) / size, GL_LINEAR) with clamp-to-edge: the
+/// CPU mirror of texture(sampler, uv) on one level.
+inline vec3 sample_image_bilinear(const EnvImage& img, vec2 uv)
+{
+    const float x = uv.x * static_cast<float>(img.width) - 0.5f;
+    const float y = uv.y * static_cast<float>(img.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+    auto at = [&](int i, int j) {
+        return img.texel(std::clamp(i, 0, img.width - 1), std::clamp(j, 0, img.height - 1));
+    };
+    const vec3 a = glm::mix(at(x0, y0), at(x0 + 1, y0), ax);
+    const vec3 b = glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), ax);
+    return glm::mix(a, b, ay);
+}
+
+/// The next mip level by a 2x2 box (GL's glGenerateMipmap for even sizes). Throws
+/// std::invalid_argument for odd sizes: an odd level would mix the halves of an atlas.
+inline EnvImage downsample_box(const EnvImage& src)
+{
+    if (src.width % 2 != 0 || src.height % 2 != 0 || src.width < 2 || src.height < 2) {
+        throw std::invalid_argument("raykit::downsample_box: both sizes must be even");
+    }
+    EnvImage dst(src.width / 2, src.height / 2);
+    for (int y = 0; y < dst.height; ++y) {
+        for (int x = 0; x < dst.width; ++x) {
+            const vec3 s = src.texel(2 * x, 2 * y) + src.texel(2 * x + 1, 2 * y) + src.texel(2 * x, 2 * y + 1) +
+                           src.texel(2 * x + 1, 2 * y + 1);
+            dst.set(x, y, 0.25f * s);
+        }
+    }
+    return dst;
+}
+
+/// A mip chain of `levels` levels (levels[0] = base) by repeated 2x2 boxes. Throws
+/// std::invalid_argument when a level would have an odd size (see downsample_box) or levels < 1.
+inline std::vector<EnvImage> generate_env_mips(const EnvImage& base, int levels)
+{
+    if (levels < 1) throw std::invalid_argument("raykit::generate_env_mips: levels must be >= 1");
+    std::vector<EnvImage> chain{base};
+    for (int l = 1; l < levels; ++l) chain.push_back(downsample_box(chain.back()));
+    return chain;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cube maps (GL conventions)
+
+/// The (not normalised) direction through face coordinates (sc, tc) in [-1, 1] of `face`
+/// (GL table 8.19 inverted); values beyond ±1 continue the face's plane (seamless filtering).
+inline vec3 cube_face_direction(int face, float sc, float tc)
+{
+    switch (face) {
+    case 0: return vec3(1.0f, -tc, -sc);
+    case 1: return vec3(-1.0f, -tc, sc);
+    case 2: return vec3(sc, 1.0f, tc);
+    case 3: return vec3(sc, -1.0f, -tc);
+    case 4: return vec3(sc, -tc, 1.0f);
+    default: return vec3(-sc, -tc, -1.0f);
+    }
+}
+
+/// The face a direction selects (largest |component|; ties prefer z, then y) and its face
+/// coordinates sc, tc in [-1, 1] (GL table 8.19). The zero vector selects +Z's centre.
+inline int cube_face_select(vec3 d, float& sc, float& tc)
+{
+    const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+    int face;
+    float ma;
+    if (az >= ax && az >= ay) {
+        face = d.z < 0.0f ? 5 : 4;
+        ma = az;
+        sc = d.z < 0.0f ? -d.x : d.x;
+        tc = -d.y;
+    } else if (ay >= ax) {
+        face = d.y < 0.0f ? 3 : 2;
+        ma = ay;
+        sc = d.x;
+        tc = d.y < 0.0f ? -d.z : d.z;
+    } else {
+        face = d.x < 0.0f ? 1 : 0;
+        ma = ax;
+        sc = d.x < 0.0f ? d.z : -d.z;
+        tc = -d.y;
+    }
+    if (!(ma > 0.0f)) {
+        sc = tc = 0.0f;
+        return 4;
+    }
+    sc = std::clamp(sc / ma, -1.0f, 1.0f);
+    tc = std::clamp(tc / ma, -1.0f, 1.0f);
+    return face;
+}
+
+/// The unit direction of texel (i, j)'s centre on `face` of a cube of `size` texels.
+inline vec3 cube_texel_direction(int face, int i, int j, int size)
+{
+    const float n = static_cast<float>(size);
+    return glm::normalize(cube_face_direction(face, 2.0f * (static_cast<float>(i) + 0.5f) / n - 1.0f,
+                                              2.0f * (static_cast<float>(j) + 0.5f) / n - 1.0f));
+}
+
+namespace detail {
+/// Texel (i, j) of `face`, where i, j may be one texel outside the face: such texels are taken
+/// from the neighbouring face, at the texel nearest to the continued direction (seamless cube
+/// filtering, like GL_TEXTURE_CUBE_MAP_SEAMLESS).
+inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
+{
+    const int n = cube.size;
+    if (i >= 0 && i < n && j >= 0 && j < n) return cube.faces[static_cast<std::size_t>(face)].texel(i, j);
+    const float fn = static_cast<float>(n);
+    const vec3 d = cube_face_direction(face, 2.0f * (static_cast<float>(i) + 0.5f) / fn - 1.0f,
+                                       2.0f * (static_cast<float>(j) + 0.5f) / fn - 1.0f);
+    float sc = 0.0f, tc = 0.0f;
+    const int f2 = cube_face_select(d, sc, tc);
+    const int i2 = std::clamp(static_cast<int>(std::floor((0.5f * sc + 0.5f) * fn)), 0, n - 1);
+    const int j2 = std::clamp(static_cast<int>(std::floor((0.5f * tc + 0.5f) * fn)), 0, n - 1);
+    return cube.faces[static_cast<std::size_t>(f2)].texel(i2, j2);
+}
+}  // namespace detail
+
+/// Seamless bilinear lookup of a cube map along dir (any non-zero length): the CPU mirror of
+/// texture(samplerCube, dir) with GL_LINEAR and GL_TEXTURE_CUBE_MAP_SEAMLESS (taps past a face
+/// edge come from the adjacent face).
+inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
+{
+    float sc = 0.0f, tc = 0.0f;
+    const int face = cube_face_select(dir, sc, tc);
+    const float n = static_cast<float>(cube.size);
+    const float x = (0.5f * sc + 0.5f) * n - 0.5f, y = (0.5f * tc + 0.5f) * n - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+    const vec3 a = glm::mix(detail::cube_fetch_seamless(cube, face, x0, y0),
+                            detail::cube_fetch_seamless(cube, face, x0 + 1, y0), ax);
+    const vec3 b = glm::mix(detail::cube_fetch_seamless(cube, face, x0, y0 + 1),
+                            detail::cube_fetch_seamless(cube, face, x0 + 1, y0 + 1), ax);
+    return glm::mix(a, b, ay);
+}
+
+/// Bakes a cube map of `size` texels per face from a function of direction, each texel the mean
+/// of supersample x supersample evaluations spread evenly over its area (a box filter in texel
+/// space). `env(vec3 unit_dir) -> vec3`. Throws std::invalid_argument for size < 1 or supersample
+/// outside [1, 64].
+template <class F>
+EnvCubeMap bake_cube_map(int size, F&& env, int supersample = 4)
+{
+    if (size < 1 || supersample < 1 || supersample > 64) {
+        throw std::invalid_argument("raykit::bake_cube_map: size >= 1 and supersample in [1, 64] required");
+    }
+    EnvCubeMap cube;
+    cube.size = size;
+    const float n = static_cast<float>(size), ss = static_cast<float>(supersample);
+    for (int f = 0; f < 6; ++f) {
+        EnvImage img(size, size);
+        for (int j = 0; j < size; ++j) {
+            for (int i = 0; i < size; ++i) {
+                vec3 sum(0.0f);
+                for (int b = 0; b < supersample; ++b) {
+                    for (int a = 0; a < supersample; ++a) {
+                        const float u = (static_cast<float>(i) + (static_cast<float>(a) + 0.5f) / ss) / n;
+                        const float v = (static_cast<float>(j) + (static_cast<float>(b) + 0.5f) / ss) / n;
+                        sum += env(glm::normalize(cube_face_direction(f, 2.0f * u - 1.0f, 2.0f * v - 1.0f)));
+                    }
+                }
+                img.set(i, j, sum / (ss * ss));
+            }
+        }
+        cube.faces[static_cast<std::size_t>(f)] = std::move(img);
+    }
+    return cube;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dual-paraboloid atlas
+
+/// Options of bake_dual_paraboloid.
+struct DualParaboloidBakeOptions {
+    int half_size = 256;   ///< H: the atlas is 2H x H texels; a multiple of 2^ceil(max_lod)
+    float max_lod = 0.0f;  ///< largest LOD lookups will use: sets the guard and ceil(max_lod) + 1 mips
+    int supersample = 0;   ///< samples per texel and axis; 0 = automatic (see bake_dual_paraboloid)
+    /// The map's frame in the source's (world) space, columns = the map's x, y, z axes (e.g.
+    /// rk_paraboloid_frame(N, up, +1) for a window): a texel's world direction is frame * local.
+    /// Look up with the local direction world * frame. Identity: the map is in world space.
+    mat3 frame = mat3(1.0f);
+};
+
+/// The guard scale bake_dual_paraboloid uses for these options:
+/// rk_dual_paraboloid_guard_scale(H, rk_paraboloid_filter_footprint(max_lod)).
+inline float dual_paraboloid_guard_scale(const DualParaboloidBakeOptions& o)
+{
+    return rk_dual_paraboloid_guard_scale(static_cast<float>(o.half_size), rk_paraboloid_filter_footprint(o.max_lod));
+}
+
+/// Bakes a dual-paraboloid atlas from a function of direction `env(vec3 unit_dir) -> vec3`: every
+/// texel of level 0 (guard band included, which receives the continuation directions of
+/// rk_dual_paraboloid_dir) is the mean of supersample^2 evaluations spread evenly over its area;
+/// then ceil(max_lod) 2x2 box mips. supersample 0 means 4. Throws std::invalid_argument for
+/// half_size < 2 or not a multiple of 2^ceil(max_lod), max_lod outside [0, 16], supersample
+/// outside [0, 64], or a guard that eats the whole map (guard scale < 0.25).
+template <class F>
+DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptions& o)
+{
+    if (!(o.max_lod >= 0.0f && o.max_lod <= 16.0f) || o.supersample < 0 || o.supersample > 64) {
+        throw std::invalid_argument(
+            "raykit::bake_dual_paraboloid: max_lod in [0, 16] and supersample in [0, 64] required");
+    }
+    const int extra = static_cast<int>(std::ceil(o.max_lod));
+    if (o.half_size < 2 || o.half_size % (1 << extra) != 0) {
+        throw std::invalid_argument(
+            "raykit::bake_dual_paraboloid: half_size must be >= 2 and a multiple of 2^ceil(max_lod)");
+    }
+    DualParaboloidMap map;
+    map.half_size = o.half_size;
+    map.max_lod = o.max_lod;
+    map.guard_scale = dual_paraboloid_guard_scale(o);
+    if (map.guard_scale < 0.25f) {
+        throw std::invalid_argument(
+            "raykit::bake_dual_paraboloid: the guard band for max_lod leaves less than a quarter of the map");
+    }
+    const int ssi = o.supersample == 0 ? 4 : o.supersample;
+    const float ss = static_cast<float>(ssi);
+    const int w = 2 * o.half_size, h = o.half_size;
+    EnvImage base(w, h);
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            vec3 sum(0.0f);
+            for (int b = 0; b < ssi; ++b) {
+                for (int a = 0; a < ssi; ++a) {
+                    const vec2 uv(
+                        (static_cast<float>(i) + (static_cast<float>(a) + 0.5f) / ss) / static_cast<float>(w),
+                        (static_cast<float>(j) + (static_cast<float>(b) + 0.5f) / ss) / static_cast<float>(h));
+                    sum += env(o.frame * rk_dual_paraboloid_dir(uv, map.guard_scale));
+                }
+            }
+            base.set(i, j, sum / (ss * ss));
+        }
+    }
+    map.levels = generate_env_mips(base, extra + 1);
+    return map;
+}
+
+/// The automatic supersampling of bake_dual_paraboloid for a cube of cube_size texels: enough
+/// samples per axis to take about two per cube texel where the atlas's texels are largest (the
+/// centre of each half spans 4 / (g H) rad, a cube texel at most 2 / cube_size):
+/// ceil(4 cube_size / (g H)), clamped to [2, 16].
+inline int dual_paraboloid_auto_supersample(int cube_size, int half_size, float guard_scale)
+{
+    const float r = 4.0f * static_cast<float>(cube_size) / (guard_scale * static_cast<float>(half_size));
+    return std::clamp(static_cast<int>(std::ceil(r)), 2, 16);
+}
+
+/// The thesis's step 2: a cube map resampled into a dual-paraboloid atlas (both hemispheres, the
+/// guard band filled), each texel the box-filtered mean of supersampled seamless bilinear cube
+/// lookups (options.supersample = 0: dual_paraboloid_auto_supersample), plus ceil(max_lod) mips.
+/// Throws as bake_dual_paraboloid_fn, and for an empty cube.
+inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParaboloidBakeOptions o)
+{
+    if (cube.size < 1) throw std::invalid_argument("raykit::bake_dual_paraboloid: empty cube map");
+    if (o.supersample == 0) {
+        o.supersample = dual_paraboloid_auto_supersample(cube.size, o.half_size, dual_paraboloid_guard_scale(o));
+    }
+    return bake_dual_paraboloid_fn([&cube](vec3 d) { return sample_cube_map(cube, d); }, o);
+}
+
+/// Lookup of a dual-paraboloid atlas along dir (any non-zero length) at an explicit LOD, clamped
+/// to [0, max_lod]: bilinear within a level, linear between levels (GL_LINEAR_MIPMAP_LINEAR with
+/// textureLod and GL_CLAMP_TO_EDGE), at rk_dual_paraboloid_uv. The CPU mirror of
+/// rk_dual_paraboloid_sample_lod.
+inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)
+{
+    if (map.levels.empty()) return vec3(0.0f);
+    const vec2 uv = rk_dual_paraboloid_uv(dir, map.guard_scale);
+    const float top = static_cast<float>(map.levels.size() - 1);
+    const float l = std::clamp(lod, 0.0f, std::min(map.max_lod, top));
+    const float l0 = std::floor(l);
+    const std::size_t i0 = static_cast<std::size_t>(l0);
+    const vec3 a = sample_image_bilinear(map.levels[i0], uv);
+    if (l == l0) return a;
+    return glm::mix(a, sample_image_bilinear(map.levels[i0 + 1], uv), l - l0);
+}
+
+/// A single square paraboloid map (the thesis's per-window map, Fahlén 2005 §3.2.3) of size x size
+/// texels for the hemisphere `hemi` (the thesis: -1, d0 = -z) of the local frame `frame` (columns =
+/// local axes in world space, e.g. rk_paraboloid_frame(N, up, -1), whose d0 is the window normal
+/// N), texels at uv = rk_paraboloid_uv(st, guard_scale), i.e. st = (2 uv - 1) / guard_scale: with
+/// guard_scale 1 the rim touches the edges (the thesis's layout), with g < 1 a guard ring of
+/// continuation directions surrounds the disk. Each texel is the mean of supersample^2
+/// evaluations of env(world_dir) over its area. Look up with rk_paraboloid_sample_biased or
+/// sample_paraboloid. Throws std::invalid_argument for size < 1, supersample outside [1, 64] or
+/// guard_scale outside [RK_PARABOLOID_GUARD_MIN, 1].
+template <class F>
+EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float guard_scale = 1.0f, int supersample = 4)
+{
+    if (size < 1 || supersample < 1 || supersample > 64 ||
+        !(guard_scale >= RK_PARABOLOID_GUARD_MIN && guard_scale <= 1.0f)) {
+        throw std::invalid_argument(
+            "raykit::bake_paraboloid: size >= 1, supersample in [1, 64], guard_scale in (0, 1] required");
+    }
+    EnvImage img(size, size);
+    const float n = static_cast<float>(size), ss = static_cast<float>(supersample);
+    for (int j = 0; j < size; ++j) {
+        for (int i = 0; i < size; ++i) {
+            vec3 sum(0.0f);
+            for (int b = 0; b < supersample; ++b) {
+                for (int a = 0; a < supersample; ++a) {
+                    const float u = (static_cast<float>(i) + (static_cast<float>(a) + 0.5f) / ss) / n;
+                    const float v = (static_cast<float>(j) + (static_cast<float>(b) + 0.5f) / ss) / n;
+                    const vec2 st((2.0f * u - 1.0f) / guard_scale, (2.0f * v - 1.0f) / guard_scale);
+                    sum += env(frame * rk_paraboloid_decode(st, hemi));
+                }
+            }
+            img.set(i, j, sum / (ss * ss));
+        }
+    }
+    return img;
+}
+
+/// bake_paraboloid_fn from a cube map (seamless bilinear lookups; supersample 0 chooses about two
+/// samples per cube texel where the map's texels are largest, as for the atlas).
+inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, float hemi, float guard_scale = 1.0f,
+                                int supersample = 0)
+{
+    if (cube.size < 1) throw std::invalid_argument("raykit::bake_paraboloid: empty cube map");
+    if (supersample == 0) {
+        const float r = 4.0f * static_cast<float>(cube.size) /
+                        (std::max(guard_scale, RK_PARABOLOID_GUARD_MIN) * static_cast<float>(std::max(size, 1)));
+        supersample = std::clamp(static_cast<int>(std::ceil(r)), 2, 16);
+    }
+    return bake_paraboloid_fn([&cube](vec3 d) { return sample_cube_map(cube, d); }, size, frame, hemi, guard_scale,
+                              supersample);
+}
+
+/// Bilinear lookup of a single paraboloid map along the local direction dir (world * frame),
+/// directions behind the map clamped to the rim: the CPU mirror of rk_paraboloid_sample_biased
+/// at bias 0 on the base level.
+inline vec3 sample_paraboloid(const EnvImage& map, vec3 dir, float hemi, float guard_scale = 1.0f)
+{
+    vec2 st = rk_paraboloid_encode(dir, hemi);
+    const float r2 = glm::dot(st, st);
+    if (r2 > 1.0f) st *= 1.0f / std::sqrt(r2);
+    return sample_image_bilinear(map, rk_paraboloid_uv(st, guard_scale));
+}
+
+/// The inverse resampling (atlas -> cube), for tests: each cube texel the mean of
+/// supersample^2 level-0 lookups (sample_dual_paraboloid) over its area. Throws
+/// std::invalid_argument for size < 1 or supersample outside [1, 64].
+inline EnvCubeMap cube_from_dual_paraboloid(const DualParaboloidMap& map, int size, int supersample = 2)
+{
+    return bake_cube_map(
+        size, [&map](vec3 d) { return sample_dual_paraboloid(map, d, 0.0f); }, supersample);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Octahedral map (C++ only: the comparison of issue 5 item 6)
+
+/// Octahedral encoding of a direction (any non-zero length; zero gives the +z pole) to p in
+/// [-1, 1]^2: p = (x, y) / (|x| + |y| + |z|), folded over the diagonals for z < 0.
+inline vec2 octahedral_encode(vec3 dir)
+{
+    const vec3 d = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, 1.0f));
+    const float l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    vec2 p(d.x / l1, d.y / l1);
+    if (d.z < 0.0f) {
+        const vec2 s(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
+        p = vec2((1.0f - std::abs(p.y)) * s.x, (1.0f - std::abs(p.x)) * s.y);
+    }
+    return p;
+}
+
+/// The unit direction of octahedral coordinates p in [-1, 1]^2 (clamped).
+inline vec3 octahedral_decode(vec2 p_in)
+{
+    const vec2 p = glm::clamp(p_in, vec2(-1.0f), vec2(1.0f));
+    vec3 v(p.x, p.y, 1.0f - std::abs(p.x) - std::abs(p.y));
+    if (v.z < 0.0f) {
+        const vec2 s(v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f);
+        v = vec3((1.0f - std::abs(p.y)) * s.x, (1.0f - std::abs(p.x)) * s.y, v.z);
+    }
+    return glm::normalize(v);
+}
+
+/// Bakes an octahedral map of size x size texels (uv = 0.5 p + 0.5) from a function of direction,
+/// supersample^2 evaluations per texel. Throws std::invalid_argument for size < 2 or supersample
+/// outside [1, 64].
+template <class F>
+OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4)
+{
+    if (size < 2 || supersample < 1 || supersample > 64) {
+        throw std::invalid_argument("raykit::bake_octahedral: size >= 2 and supersample in [1, 64] required");
+    }
+    OctahedralMap map;
+    map.size = size;
+    map.image = EnvImage(size, size);
+    const float n = static_cast<float>(size), ss = static_cast<float>(supersample);
+    for (int j = 0; j < size; ++j) {
+        for (int i = 0; i < size; ++i) {
+            vec3 sum(0.0f);
+            for (int b = 0; b < supersample; ++b) {
+                for (int a = 0; a < supersample; ++a) {
+                    const float u = (static_cast<float>(i) + (static_cast<float>(a) + 0.5f) / ss) / n;
+                    const float v = (static_cast<float>(j) + (static_cast<float>(b) + 0.5f) / ss) / n;
+                    sum += env(octahedral_decode(vec2(2.0f * u - 1.0f, 2.0f * v - 1.0f)));
+                }
+            }
+            map.image.set(i, j, sum / (ss * ss));
+        }
+    }
+    return map;
+}
+
+/// An octahedral map resampled from a cube map (supersample 0: ceil(5 cube_size / size) clamped to
+/// [2, 16], about two samples per cube texel where the octahedral texels are largest).
+inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int supersample = 0)
+{
+    if (cube.size < 1) throw std::invalid_argument("raykit::bake_octahedral: empty cube map");
+    if (supersample == 0) {
+        supersample = std::clamp(
+            static_cast<int>(std::ceil(5.0f * static_cast<float>(cube.size) / static_cast<float>(std::max(size, 1)))),
+            2, 16);
+    }
+    return bake_octahedral_fn(
+        size, [&cube](vec3 d) { return sample_cube_map(cube, d); }, supersample);
+}
+
+/// Bilinear lookup of an octahedral map along dir with the map's fold-over edges (a tap past an
+/// edge reads the texel mirrored across the edge's midpoint, as a one-texel gutter would provide).
+inline vec3 sample_octahedral(const OctahedralMap& map, vec3 dir)
+{
+    const int n = map.size;
+    const vec2 p = octahedral_encode(dir);
+    const float x = (0.5f * p.x + 0.5f) * static_cast<float>(n) - 0.5f;
+    const float y = (0.5f * p.y + 0.5f) * static_cast<float>(n) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+    auto at = [&](int i, int j) {
+        if (i < 0) {
+            i = -1 - i;
+            j = n - 1 - j;
+        }
+        if (i >= n) {
+            i = 2 * n - 1 - i;
+            j = n - 1 - j;
+        }
+        if (j < 0) {
+            j = -1 - j;
+            i = n - 1 - i;
+        }
+        if (j >= n) {
+            j = 2 * n - 1 - j;
+            i = n - 1 - i;
+        }
+        return map.image.texel(std::clamp(i, 0, n - 1), std::clamp(j, 0, n - 1));
+    };
+    const vec3 a = glm::mix(at(x0, y0), at(x0 + 1, y0), ax);
+    const vec3 b = glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), ax);
+    return glm::mix(a, b, ay);
+}
+
+}  // namespace raykit

@@ -1,0 +1,185 @@
+// raykit — envmap_correction.glsl: reflection-vector correction for environment maps captured at a
+// finite distance ("parallax correction"): Brennan's sphere, the thesis's street-plane
+// approximation with its sigmoid, the exact ray-plane correction, and the box projection.
+//
+// Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/envmap_correction.hpp.
+// Source: Fahlén 2005 §3.2.4 "Accurate Reflections" (Brennan, ShaderX 2002: R' = R + CP / r; the
+// plane at d = 8 m whose hypotenuse is d / (N·R); the sigmoid with a = -4.7, k = 0.9);
+// seed002.md §3.8 and §8.3 (the sigmoid's x is the angle between N and R in radians; the
+// un-tweaked plane model is exactly a ray-plane parallax correction); Bjorke, GPU Gems ch. 19
+// (2004) and Lagarde & Zanuttini, "Local image-based lighting with parallax-corrected cubemap"
+// (SIGGRAPH 2012) for the box projection.
+//
+// Conventions, used by every function here:
+//   R   the reflection vector (direction of the reflected ray), e.g. reflect(-to_eye, N).
+//   P   the shaded surface point; C the centre the environment map was captured from;
+//       CP = P - C. All in one space (world, or the box's local space for an oriented box).
+//   N   the unit normal of the reflector (a window), pointing out of the building, towards the
+//       reflected surroundings.
+// The corrected vectors are directions for a cube-map or paraboloid lookup and are NOT unit
+// length (both lookups normalise; rk_paraboloid_encode accepts any length). The exact corrections
+// return the vector from C to the hit point H (times a positive factor where documented), so
+// C + result is on the plane or the box.
+// Positions and vectors are clamped component-wise to ±RK_ENVMAP_POS_MAX (1e18), which keeps
+// every product finite: every function returns finite values for every finite input, including
+// grazing reflections (N·R = 0), zero vectors, denormals and ±0.
+//
+// @rk-es 310
+#ifndef RK_ENVMAP_CORRECTION_GLSL
+#define RK_ENVMAP_CORRECTION_GLSL
+
+#include "common.glsl"
+
+// The thesis's constants (§3.2.4): the sigmoid's slope a and midpoint k (radians), and the
+// distance d to the plane of the facades across the street (metres, the model's street width).
+#define RK_ENVMAP_FAHLEN_A (-4.7f)
+#define RK_ENVMAP_FAHLEN_K 0.9f
+#define RK_ENVMAP_FAHLEN_D 8.0f
+#define RK_ENVMAP_POS_MAX 1.0e18f
+
+/// rk_envmap_clamp_pos: v clamped component-wise to ±RK_ENVMAP_POS_MAX. Exact. Cost: 1 clamp.
+RK_INLINE vec3 rk_envmap_clamp_pos(vec3 v)
+{
+    return clamp(v, vec3(-RK_ENVMAP_POS_MAX), vec3(RK_ENVMAP_POS_MAX));
+}
+
+/// rk_envmap_normalize: v / |v| for any finite v without overflow or underflow (components are
+/// first scaled by the largest |component|, brought below 1e30 so that its reciprocal is a normal
+/// float); `fallback` when every |component| is below RK_FLT_MIN. Max error: 2.5 ulp per component.
+/// Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
+RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
+{
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    if (m < RK_FLT_MIN) {
+        return fallback;
+    }
+    float pre = m > 1.0e30f ? 1.0e-30f : 1.0f;
+    vec3 q = (v * pre) / (m * pre);
+    return q * inversesqrt(dot(q, q));
+}
+
+/// rk_envmap_angle: the angle in [0, π] radians whose cosine is cos_nr (clamped to [-1, 1]),
+/// evaluated as atan(sqrt(1 - c^2), c): GLSL leaves acos's precision to the driver (Mesa's asin
+/// is 4e-4 rad off, see fresnel.glsl), atan agrees to 4e-6. Max error: 4e-6 rad on llvmpipe,
+/// 2 ulp on the CPU. Cost: 1 sqrt, 1 atan.
+RK_INLINE float rk_envmap_angle(float cos_nr)
+{
+    float c = clamp(cos_nr, -1.0f, 1.0f);
+    return atan(sqrt((1.0f - c) * (1.0f + c)), c);
+}
+
+/// rk_envmap_sigmoid: the thesis's logistic weight σ(x) = 1 / (1 + e^(-a (x - k))). With the
+/// thesis's a = -4.7, k = 0.9 and x the angle between N and R in radians (seed002.md erratum 6):
+/// σ(0) = 0.98566, σ(0.5) = 0.8676, σ(0.9) = 0.5, σ(1.2) = 0.1962, σ(π/2) = 0.04098, i.e. close to
+/// cos x at small angles and closer to cos^2 x towards grazing. Domain: x, a, k clamped to ±1e6,
+/// the exponent to ±80 (σ stays in [1.8e-35, 1]). Max error: that of the driver's exp
+/// (2e-7 relative on the CPU). Cost: 1 exp, 1 div, 3 flops.
+RK_INLINE float rk_envmap_sigmoid(float x, float a, float k)
+{
+    float xc = clamp(x, -1.0e6f, 1.0e6f);
+    float ac = clamp(a, -1.0e6f, 1.0e6f);
+    float kc = clamp(k, -1.0e6f, 1.0e6f);
+    float e = clamp(-ac * (xc - kc), -80.0f, 80.0f);
+    return 1.0f / (1.0f + exp(e));
+}
+
+/// rk_envmap_fahlen_weight: σ(angle(N, R)) = rk_envmap_sigmoid(rk_envmap_angle(cos_nr), a, k),
+/// the thesis's replacement for N·R in the plane correction. cos_nr = dot(N, R) for unit vectors.
+/// Cost: 1 sqrt, 1 atan, 1 exp, 1 div.
+RK_INLINE float rk_envmap_fahlen_weight(float cos_nr, float a, float k)
+{
+    return rk_envmap_sigmoid(rk_envmap_angle(cos_nr), a, k);
+}
+
+/// rk_reflect_correct_sphere: Brennan's correction for an environment at a finite radius r around
+/// C: R' = R + CP / r (from R' = R r + CP; exact for a sphere of radius r only when |CP| << r).
+/// Works when the reflected objects are at a roughly constant distance; fails for a street
+/// (thesis). R should be unit. r clamped to [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX.
+/// Exact (2 roundings per component). Cost: 1 div, 3 fma.
+RK_INLINE vec3 rk_reflect_correct_sphere(vec3 r_dir, vec3 cp, float radius)
+{
+    float inv_r = 1.0f / clamp(radius, 1.0e-18f, 1.0e18f);
+    return rk_envmap_clamp_pos(r_dir) + rk_envmap_clamp_pos(cp) * inv_r;
+}
+
+/// rk_reflect_correct_plane_cos: the thesis's un-tweaked plane model: Brennan's correction with the
+/// radius replaced by the hypotenuse d / (N·R) to a plane parallel to the window at distance d:
+/// R' = R + CP (N·R) / d. Equal in direction to the exact ray-plane correction
+/// (rk_reflect_correct_plane) when P lies in the plane through C parallel to the window (CP·N = 0).
+/// Artefacts at grazing angles (thesis); see rk_reflect_correct_fahlen. R, N unit; N·R clamped
+/// to [0, 1], d to [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX. Cost: 1 dot, 1 div, 3 fma.
+RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d)
+{
+    vec3 r = rk_envmap_clamp_pos(r_dir);
+    float c = clamp(dot(rk_envmap_clamp_pos(n), r), 0.0f, 1.0f);
+    return r + rk_envmap_clamp_pos(cp) * (c / clamp(d, 1.0e-18f, 1.0e18f));
+}
+
+/// rk_reflect_correct_fahlen: the thesis's correction (§3.2.4), the plane model with N·R replaced
+/// by the sigmoid of the angle between N and R: R' = R + CP σ(angle(N, R)) / d, with parameters a,
+/// k (thesis: RK_ENVMAP_FAHLEN_A = -4.7, RK_ENVMAP_FAHLEN_K = 0.9, d = RK_ENVMAP_FAHLEN_D = 8 m).
+/// An empirical fix of the grazing artefacts of rk_reflect_correct_plane_cos (and of a "tilted
+/// ground" when C is far above the camera); not exact for any geometry. R, N unit; d clamped to
+/// [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX. Cost: 1 dot + rk_envmap_fahlen_weight + 1 div.
+RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp, float d, float a, float k)
+{
+    vec3 r = rk_envmap_clamp_pos(r_dir);
+    float w = rk_envmap_fahlen_weight(dot(rk_envmap_clamp_pos(n), r), a, k);
+    return r + rk_envmap_clamp_pos(cp) * (w / clamp(d, 1.0e-18f, 1.0e18f));
+}
+
+/// rk_reflect_correct_fahlen (thesis constants): a = -4.7, k = 0.9, d = 8.
+RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp)
+{
+    return rk_reflect_correct_fahlen(r_dir, n, cp, RK_ENVMAP_FAHLEN_D, RK_ENVMAP_FAHLEN_A, RK_ENVMAP_FAHLEN_K);
+}
+
+/// rk_reflect_correct_plane: the exact ray-plane parallax correction. The reflected surroundings
+/// are the plane {X : (X - C)·N = d} (N towards them, d > 0 its distance from C); the reflected ray
+/// P + t R hits it at H with t = (d - CP·N) / (R·N), and the environment is looked up towards
+/// H - C. Returned as (H - C)(R̂·N) = CP (R̂·N) + (d - CP·N) R̂ (R̂ = R normalised), which needs no
+/// division: at grazing reflections (R·N -> 0) it tends continuously to a multiple of R (the hit
+/// recedes to infinity) instead of dividing by zero. Rays leaving the plane (R·N <= 0) return a
+/// multiple of R (hit at infinity); P on or beyond the plane returns CP (R̂·N) (H = P). When the
+/// result would be zero (R = 0 or both cases at once) R is returned. With CP·N = 0 the direction
+/// equals the thesis's plane model rk_reflect_correct_plane_cos. N is normalised internally
+/// (N = 0 counts as +z); R any non-zero length. Max error: the hit C + result / (R̂·N) lies on the
+/// plane to 1.1e-6 of its distance from C (tests/test_envmap_correction.cpp prints it).
+/// Cost: 2 normalisations, 2 dot, 6 fma.
+RK_INLINE vec3 rk_reflect_correct_plane(vec3 r_dir, vec3 p, vec3 c, vec3 n, float d)
+{
+    vec3 r = rk_envmap_normalize(r_dir, vec3(0.0f));
+    vec3 nn = rk_envmap_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 cp = rk_envmap_clamp_pos(p) - rk_envmap_clamp_pos(c);
+    float w = max(dot(r, nn), 0.0f);
+    float h = max(clamp(d, -RK_ENVMAP_POS_MAX, RK_ENVMAP_POS_MAX) - dot(cp, nn), 0.0f);
+    vec3 v = cp * w + h * r;
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    return m < RK_FLT_MIN ? rk_envmap_clamp_pos(r_dir) : v;
+}
+
+/// rk_reflect_correct_box: the box-projected (local, parallax-corrected) cube-map lookup of
+/// Lagarde & Zanuttini 2012 / Bjorke 2004: the reflected ray P + t R̂ leaves the axis-aligned box
+/// [box_min, box_max] (the proxy of the room or street the map was captured in, containing P) at
+/// H, and the map is looked up towards H - C, which is returned exactly: C + result lies on the box
+/// surface. For an oriented box transform R, P, C into its frame first. Per axis the exit distance
+/// is (face - P) / |R̂_i| with |R̂_i| floored at 1e-18 (an axis the ray runs parallel to never
+/// wins), so grazing and axis-aligned rays need no special case. P outside the box (or on a face
+/// it is leaving through) returns CP (H = P); R = 0 returns CP. Box corners are clamped to
+/// ±RK_ENVMAP_POS_MAX and box_max to >= box_min. Max error: H on the box to 1e-6 relative to the
+/// box size; exact for axis-aligned rays. Cost: 1 normalisation, 3 div, ~20 flops.
+RK_INLINE vec3 rk_reflect_correct_box(vec3 r_dir, vec3 p, vec3 c, vec3 box_min, vec3 box_max)
+{
+    vec3 r = rk_envmap_normalize(r_dir, vec3(0.0f));
+    vec3 pc = rk_envmap_clamp_pos(p);
+    vec3 lo = rk_envmap_clamp_pos(box_min);
+    vec3 hi = max(rk_envmap_clamp_pos(box_max), lo);
+    // Exit face per axis; a zero or denormal component (flushed by GPUs) counts as positive.
+    vec3 dist = vec3(r.x > -RK_FLT_MIN ? hi.x - pc.x : pc.x - lo.x, r.y > -RK_FLT_MIN ? hi.y - pc.y : pc.y - lo.y,
+                     r.z > -RK_FLT_MIN ? hi.z - pc.z : pc.z - lo.z);
+    vec3 t3 = max(dist, vec3(0.0f)) / max(abs(r), vec3(1.0e-18f));
+    float t = min(min(t3.x, t3.y), t3.z);
+    return (pc - rk_envmap_clamp_pos(c)) + t * r;
+}
+
+#endif  // RK_ENVMAP_CORRECTION_GLSL

@@ -1,0 +1,433 @@
+// raykit — paraboloid.glsl: (dual-)paraboloid environment maps: direction <-> map coordinates for
+// either hemisphere convention, solid-angle density, the window frame, a 2:1 dual-paraboloid atlas
+// with a seam guard derived from the texel size and the filter footprint, LOD selection, and the
+// Brabec-style vertex projection for rendering into a paraboloid map.
+//
+// Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/paraboloid.hpp, which adds the
+// CPU baking (cube -> dual paraboloid with supersampling and mips, the inverse, an octahedral map
+// for comparison). Texture lookups (GLSL only) are in paraboloid_sample.glsl.
+// Sources: Fahlén 2005 §3.2.3 (Eq. 3.9-3.12: thesis convention, front d0 = -z, the window frame
+// rotation about y), Heidrich & Seidel 1998 / Blythe SIGGRAPH '99 notes, Brabec et al. 2002
+// (dual-paraboloid shadow maps, d0 = +z, linear-distance depth); seed002.md §3.7 and §8.2 (the map
+// is the stereographic projection from the opposite pole; density 4 / (1 + s^2 + t^2)^2).
+//
+// Conventions, used by every function here:
+//   hemi   which hemisphere a paraboloid covers, as the sign of its axis d0 = (0, 0, hemi):
+//          +1 Heidrich/Brabec (d0 = +z), -1 the thesis (d0 = -z). Any value <= -RK_FLT_MIN means
+//          -1, anything else (±0 and negative denormals included) +1.
+//   st     paraboloid coordinates: st = (x, y) / (1 + hemi z) for the unit direction (x, y, z).
+//          The hemisphere (hemi z >= 0) maps onto the unit disk (the "sweet circle"), its pole to
+//          (0, 0), the rim hemi z = 0 to |st| = 1. Directions of the other hemisphere continue the
+//          same stereographic projection outside the disk (|st| > 1, the antipode at infinity); the
+//          atlas's guard band stores exactly that continuation, which makes the seam invisible.
+//          Handedness, seen from the map centre looking along d0 with +y up: the +z map (hemi = +1)
+//          is mirrored left-right (s grows with x, which points left), the -z map is not.
+//   uv     texture coordinates, 0.5 + 0.5 st for a single map (v = 0 is the first row of the
+//          image, GL's convention), or the dual atlas below.
+//   dir    directions need not be unit length (they are normalised internally, robustly for any
+//          finite vector: components are first scaled by the largest); the zero vector (and vectors
+//          whose components are all denormal) counts as d0.
+//
+// Dual-paraboloid atlas (rk_dual_paraboloid_uv): a 2H x H texture, left half the +z hemisphere
+// (hemi = +1), right half the -z hemisphere (hemi = -1); a direction with z > -RK_FLT_MIN (-0 and
+// negative denormals included, so that flushing GPUs agree) uses the left half. Inside a half,
+// uv_half = 0.5 + 0.5 g st with the guard scale g < 1: the unit disk covers the central g of the
+// half and the rest is a guard ring that the baker fills with the continuation of the projection
+// (directions just past the rim). g comes from the texel size and
+// the filter footprint (rk_dual_paraboloid_guard_scale): every bilinear tap of every lookup up to
+// the largest LOD used stays in its own half, and the taps past the rim read correct data, so both
+// halves interpolate the same signal at the seam. H must be a multiple of 2^ceil(max_lod) so the
+// 2x2 box mips never mix the halves (raykit::bake_dual_paraboloid checks).
+//
+// Every function returns finite values for every finite input (denormals, ±0, huge values).
+// Errors are against float64 evaluations, measured by tests/test_paraboloid.cpp.
+//
+// @rk-es 310
+#ifndef RK_PARABOLOID_GLSL
+#define RK_PARABOLOID_GLSL
+
+#include "common.glsl"
+
+// Largest |s|, |t| accepted by the decoders: beyond it the direction is the antipode to float
+// precision (|st| = 1e6 is 2e-6 rad from it).
+#define RK_PARABOLOID_ST_MAX 1.0e6f
+// Largest coordinate magnitude accepted by the projection helpers (positions, depth range).
+#define RK_PARABOLOID_POS_MAX 1.0e18f
+// Smallest guard scale: below it the guard band would be larger than the map itself.
+#define RK_PARABOLOID_GUARD_MIN 0.0009765625f
+
+/// rk_paraboloid_hemi_sign: the hemisphere sign from any float: -1 for hemi <= -RK_FLT_MIN, else
+/// +1 (±0 and negative denormals give +1 on every backend, flushing or not). Exact.
+/// Cost: 1 compare, 1 select.
+RK_INLINE float rk_paraboloid_hemi_sign(float hemi) { return hemi <= -RK_FLT_MIN ? -1.0f : 1.0f; }
+
+/// rk_paraboloid_max_abs: the largest |component| of v. Exact. Cost: 3 abs, 2 max.
+RK_INLINE float rk_paraboloid_max_abs(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs(v.z)); }
+
+/// rk_paraboloid_prescale: a power-of-ten factor (1 or 1e-30) that brings a magnitude m <= FLT_MAX
+/// below 1e30 so that 1 / (m * factor) is a normal float: GPUs may evaluate a / m as a * (1 / m)
+/// and flush the denormal reciprocal of a huge m to zero. Exact. Cost: 1 compare, 1 select.
+RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 1.0e-30f : 1.0f; }
+
+/// rk_paraboloid_normalize: v / |v| computed without overflow or underflow for every finite v
+/// (components first divided by the largest |component|); returns `fallback` unchanged when every
+/// component is below RK_FLT_MIN in magnitude (zero, or denormal, which GPUs flush to zero).
+/// Max error: 2.5 ulp per component against float64. Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
+RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
+{
+    float m = rk_paraboloid_max_abs(v);
+    if (m < RK_FLT_MIN) {
+        return fallback;
+    }
+    float pre = rk_paraboloid_prescale(m);
+    vec3 q = (v * pre) / (m * pre);  // largest component +-1, dot(q, q) in [1, 3]
+    return q * inversesqrt(dot(q, q));
+}
+
+/// rk_paraboloid_encode: paraboloid coordinates st = (x, y) / (1 + hemi z) of the direction `dir`
+/// (normalised internally) on the paraboloid with axis d0 = (0, 0, hemi). Thesis Eq. 3.12 for
+/// hemi = -1; Heidrich/Brabec for +1. The hemisphere maps onto the unit disk; directions past the
+/// rim continue outside it (used by the atlas guard band). The exact antipode -d0 has no image and
+/// returns (0, 0); its neighbourhood returns large finite values (|st| <= 1e30).
+/// Max error vs float64 (unit dir in the hemisphere): 2.2e-7 (measured over 4e5 directions); the
+/// round trip dir -> st -> dir through rk_paraboloid_decode is within 2.5e-7, st -> dir -> st
+/// within 2e-7 (tests/test_paraboloid.cpp prints them; the issue asks for 1e-6).
+/// Cost: rk_paraboloid_normalize + 1 add, 1 div (shared), 2 mul.
+RK_INLINE vec2 rk_paraboloid_encode(vec3 dir, float hemi)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    vec3 n = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, h));
+    float inv = 1.0f / max(1.0f + h * n.z, 1.0e-30f);
+    return vec2(n.x * inv, n.y * inv);
+}
+
+/// rk_paraboloid_decode: the unit direction of paraboloid coordinates st, the inverse of
+/// rk_paraboloid_encode: (2s, 2t, hemi (1 - s^2 - t^2)) / (1 + s^2 + t^2) (thesis Eq. 3.10 for
+/// hemi = -1). |st| <= 1 gives the hemisphere, (0, 0) gives d0, the unit circle the rim
+/// hemi z = 0; points outside the disk decode to the other hemisphere (the guard band's content).
+/// Domain: s, t clamped to [-RK_PARABOLOID_ST_MAX, RK_PARABOLOID_ST_MAX]. The result is unit
+/// length within 2 ulp. Max error vs float64: 1.4e-7 absolute per component (z near the rim is
+/// absolute-accurate only: 1 - s^2 - t^2 cancels there). Cost: 1 div, ~9 flops.
+RK_INLINE vec3 rk_paraboloid_decode(vec2 st, float hemi)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    float s = clamp(st.x, -RK_PARABOLOID_ST_MAX, RK_PARABOLOID_ST_MAX);
+    float t = clamp(st.y, -RK_PARABOLOID_ST_MAX, RK_PARABOLOID_ST_MAX);
+    float r2 = s * s + t * t;
+    float inv = 1.0f / (1.0f + r2);
+    return vec3(2.0f * s * inv, 2.0f * t * inv, h * (1.0f - r2) * inv);
+}
+
+/// rk_paraboloid_encode_differential: the change d(st) of rk_paraboloid_encode(v, hemi) for a
+/// change dv of its (not necessarily unit) argument v: the exact Jacobian of the normalised
+/// projection, s = x / (|v| + hemi z), applied to dv. Used to give textureGrad derivatives that
+/// stay continuous across the atlas seam (paraboloid_sample.glsl): pass dFdx(dir) and dFdy(dir).
+/// Both v and dv are scaled by the largest |component| of v first (the result is invariant under
+/// that), so any finite input is safe; dv is then clamped to ±RK_PARABOLOID_POS_MAX. v = 0 returns
+/// (0, 0); within 1e-6 of the antipode the divisor is floored (|result| <= 4e30).
+/// Accuracy: agrees with central differences of the float64 encode to 2e-5 relative (the
+/// differences' own truncation error) over random directions and scales 2^-20..2^20.
+/// Cost: 3 div, 1 sqrt, ~25 flops.
+RK_INLINE vec2 rk_paraboloid_encode_differential(vec3 v, vec3 dv, float hemi)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    float m = rk_paraboloid_max_abs(v);
+    if (m < RK_FLT_MIN) {
+        return vec2(0.0f);
+    }
+    float pre = rk_paraboloid_prescale(m);
+    float inv_m = 1.0f / (m * pre);
+    vec3 q = (v * pre) * inv_m;
+    vec3 dq = clamp((dv * pre) * inv_m, vec3(-RK_PARABOLOID_POS_MAX), vec3(RK_PARABOLOID_POS_MAX));
+    float len = sqrt(dot(q, q));                // in [1, sqrt(3)]
+    float dlen = dot(q, dq) / len;              // d|q|
+    float den = max(len + h * q.z, 1.0e-6f);    // >= len in the hemisphere; 0 only at the antipode
+    float dden = dlen + h * dq.z;
+    float inv = 1.0f / den;
+    return vec2((dq.x - q.x * dden * inv) * inv, (dq.y - q.y * dden * inv) * inv);
+}
+
+/// rk_paraboloid_solid_angle_density: dω/dA = 4 / (1 + s^2 + t^2)^2, the solid angle per unit
+/// area of st (the Jacobian of the decode): 4 at the centre, 1 on the rim (the factor-4 sampling
+/// variation of thesis §5.2.5); its integral over the unit disk is 2π. Domain: any finite st
+/// (s^2 + t^2 is clamped to 1e18; the far outside tends to 0). Max error: 4 ulp. Cost: 1 div,
+/// 5 flops.
+RK_INLINE float rk_paraboloid_solid_angle_density(vec2 st)
+{
+    float r2 = min(st.x * st.x + st.y * st.y, 1.0e18f);
+    float d = 1.0f + r2;
+    return 4.0f / (d * d);
+}
+
+/// rk_paraboloid_sweet_circle: 1 inside the unit disk s^2 + t^2 <= 1 (the part of a square
+/// single-paraboloid map that holds the hemisphere, π/4 = 78.54% of it), else 0.
+/// Exact. Cost: 1 dot, 1 step.
+RK_INLINE float rk_paraboloid_sweet_circle(vec2 st)
+{
+    return step(st.x * st.x + st.y * st.y, 1.0f);
+}
+
+/// rk_paraboloid_uv: texture coordinates 0.5 + 0.5 st of a single (square) paraboloid map, scaled
+/// about the centre by guard_scale (1 for the thesis's plain layout; see the atlas for the guard).
+/// Domain: st clamped to ±RK_PARABOLOID_ST_MAX, guard_scale to [RK_PARABOLOID_GUARD_MIN, 1].
+/// Max error: 1 ulp. Cost: 2 fma.
+RK_INLINE vec2 rk_paraboloid_uv(vec2 st, float guard_scale)
+{
+    float g = 0.5f * clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    vec2 c = clamp(st, vec2(-RK_PARABOLOID_ST_MAX), vec2(RK_PARABOLOID_ST_MAX));
+    return vec2(0.5f + g * c.x, 0.5f + g * c.y);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Window frame (thesis Eq. 3.11, generalised)
+
+/// rk_paraboloid_frame_angle: the thesis's rotation angle about y for a vertical window of unit
+/// normal n, θ = atan2(-n.x, -n.z): the branch-free form of Eq. 3.11 (θ = ±arccos(N·d0) with the
+/// sign of (N x d0).y, d0 = -z), satisfying R_y(θ) d0 = N for the standard right-handed
+/// R_y(θ) = [[cos θ, 0, sin θ], [0, 1, 0], [-sin θ, 0, cos θ]]. Only n.x, n.z are read (a tilted
+/// normal gives the angle of its horizontal projection); n.x = n.z = 0 (below RK_FLT_MIN) gives 0.
+/// Result in (-π, π]: N = +z gives +π whatever the sign of a zero n.x. Max error: that of the
+/// driver's atan (3.3e-6 rad on llvmpipe; 2.2e-7 against Eq. 3.11 in float64 on the CPU).
+/// Cost: 1 atan.
+RK_INLINE float rk_paraboloid_frame_angle(vec3 n)
+{
+    float m = max(abs(n.x), abs(n.z));
+    if (m < RK_FLT_MIN) {
+        return 0.0f;
+    }
+    float pre = rk_paraboloid_prescale(m);
+    float inv = 1.0f / (m * pre);  // atan(y, x) of huge arguments may divide them on a GPU
+    float y = -(n.x * pre) * inv;
+    float x = -(n.z * pre) * inv;
+    // A zero (or denormal) y of either sign gives +π, not -π, on every backend.
+    return atan(abs(y) < RK_FLT_MIN ? 0.0f : y, abs(x) < RK_FLT_MIN ? 0.0f : x);
+}
+
+/// rk_paraboloid_frame_vertical: R_y(θ) as a mat3 (columns: the window frame's x, y, z axes in
+/// world space), the thesis's window frame: world = M * local, local = world * M (GLSL's
+/// row-vector product is the transpose). With θ = rk_paraboloid_frame_angle(N), M maps the thesis
+/// axis d0 = -z onto N. Exact up to the driver's sin/cos. Cost: 1 sin, 1 cos.
+RK_INLINE mat3 rk_paraboloid_frame_vertical(float theta)
+{
+    float c = cos(theta);
+    float s = sin(theta);
+    return mat3(vec3(c, 0.0f, -s), vec3(0.0f, 1.0f, 0.0f), vec3(s, 0.0f, c));
+}
+
+/// rk_paraboloid_frame: the window frame for any normal, as an orthonormal right-handed basis
+/// M = (X, Y, Z) (columns, world space) such that the map axis d0 = (0, 0, hemi) maps onto n:
+/// Z = hemi n, Y = `up` made orthogonal to n, X = Y x Z. For a vertical window, up = +y and
+/// hemi = -1 this is exactly rk_paraboloid_frame_vertical(rk_paraboloid_frame_angle(n)) (Eq. 3.11).
+/// world = M * local, local = world * M. n and up are normalised internally; when up is (nearly)
+/// parallel to n (|cross| < 1e-4 after normalisation) the least aligned world axis replaces it, so
+/// horizontal windows (skylights) get a valid frame. n = 0 counts as -z. Orthonormal within 4 ulp.
+/// Cost: 3 normalisations, 2 cross, ~10 flops.
+RK_INLINE mat3 rk_paraboloid_frame(vec3 n, vec3 up, float hemi)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    vec3 nn = rk_paraboloid_normalize(n, vec3(0.0f, 0.0f, -1.0f));
+    vec3 z = h * nn;
+    vec3 u = rk_paraboloid_normalize(up, vec3(0.0f, 1.0f, 0.0f));
+    vec3 x = cross(u, z);
+    if (dot(x, x) < 1.0e-8f) {
+        // Up parallel to the normal: use the world axis least aligned with it.
+        vec3 a = abs(nn);
+        u = (a.x <= a.y && a.x <= a.z) ? vec3(1.0f, 0.0f, 0.0f)
+                                       : (a.y <= a.z ? vec3(0.0f, 1.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f));
+        x = cross(u, z);
+    }
+    x = rk_paraboloid_normalize(x, vec3(1.0f, 0.0f, 0.0f));
+    vec3 y = cross(z, x);
+    return mat3(x, y, z);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dual-paraboloid atlas
+
+/// rk_paraboloid_filter_footprint: how far, in level-0 texels, a filtered lookup at LOD up to
+/// max_lod reaches from its sample point: half a texel of level ceil(max_lod), 0.5 * 2^ceil(lod)
+/// (bilinear reads the texels whose centres are within one texel; trilinear also reads the
+/// coarser level). max_lod clamped to [0, 16]. Anisotropic filtering reaches further (by up to the
+/// anisotropy ratio along the major axis): pass the LOD of the major axis then. Exact. Cost: 1 ceil,
+/// 1 exp2.
+RK_INLINE float rk_paraboloid_filter_footprint(float max_lod)
+{
+    return 0.5f * exp2(ceil(clamp(max_lod, 0.0f, 16.0f)));
+}
+
+/// rk_dual_paraboloid_guard_scale: the guard scale g of a dual-paraboloid atlas whose halves are
+/// half_size x half_size texels (the atlas is 2 half_size x half_size), for lookups whose filter
+/// reaches `footprint` level-0 texels (rk_paraboloid_filter_footprint): g = 1 - 2 footprint /
+/// half_size, the largest scale that keeps every tap of a lookup anywhere in the unit disk inside
+/// its own half. This replaces magic shrink factors such as Torque3D's 0.997. Examples: 256 texels,
+/// bilinear level 0 (footprint 0.5): g = 0.99609; up to LOD 3 (footprint 4): g = 0.96875.
+/// Domain: half_size clamped to [1, 2^24], footprint to [0, 2^24]; the result is clamped to
+/// [RK_PARABOLOID_GUARD_MIN, 1] (a result at the floor means the footprint is too large for the
+/// map). Exact (2 roundings). Cost: 1 div, 2 flops.
+RK_INLINE float rk_dual_paraboloid_guard_scale(float half_size, float footprint)
+{
+    float n = clamp(half_size, 1.0f, 16777216.0f);
+    float f = clamp(footprint, 0.0f, 16777216.0f);
+    return clamp(1.0f - 2.0f * f / n, RK_PARABOLOID_GUARD_MIN, 1.0f);
+}
+
+/// rk_dual_paraboloid_hemi: the half of the atlas a direction uses: +1 (left, +z) for
+/// z > -RK_FLT_MIN (±0 and negative denormals, which lie on the seam, included), -1 (right, -z)
+/// otherwise. Exact. Cost: 1 select.
+RK_INLINE float rk_dual_paraboloid_hemi(vec3 dir) { return rk_paraboloid_hemi_sign(dir.z); }
+
+/// rk_dual_paraboloid_uv: atlas texture coordinates of `dir` (normalised internally): the
+/// hemisphere by the sign of z, then u = (0.5 + 0.5 g s) / 2 (+ 0.5 for the right half),
+/// v = 0.5 + 0.5 g t, with g from rk_dual_paraboloid_guard_scale. |st| <= 1 always (the chosen
+/// hemisphere contains dir), so u stays in [0.25 (1 - g), 0.25 (1 + g)] (+ 0.5) and the filter taps
+/// never cross into the other half (tests/test_paraboloid.cpp checks every tap up to the LOD, on
+/// and beside the seam). Max error: 1e-7 in uv. Cost: rk_paraboloid_encode + 4 flops.
+RK_INLINE vec2 rk_dual_paraboloid_uv(vec3 dir, float guard_scale)
+{
+    float h = rk_dual_paraboloid_hemi(dir);
+    vec2 uv = rk_paraboloid_uv(rk_paraboloid_encode(dir, h), guard_scale);
+    return vec2(0.5f * uv.x + (h > 0.0f ? 0.0f : 0.5f), uv.y);
+}
+
+/// rk_dual_paraboloid_uv_differential: the change of rk_dual_paraboloid_uv for a change d_dir of
+/// dir, with the hemisphere fixed by dir: the derivative a textureGrad lookup needs. Continuous
+/// across the seam (both halves have the same texel density at the rim), unlike dFdx(uv), which
+/// jumps by half the atlas there and makes the GPU pick the coarsest mip along the seam.
+/// Cost: rk_paraboloid_encode_differential + 3 mul.
+RK_INLINE vec2 rk_dual_paraboloid_uv_differential(vec3 dir, vec3 d_dir, float guard_scale)
+{
+    float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    vec2 d = rk_paraboloid_encode_differential(dir, d_dir, rk_dual_paraboloid_hemi(dir));
+    return vec2(0.25f * g * d.x, 0.5f * g * d.y);
+}
+
+/// rk_dual_paraboloid_dir: the unit direction stored at atlas coordinates uv (the inverse of
+/// rk_dual_paraboloid_uv): u < 0.5 is the left (+z) half. Inside a half st = (2 uv_half - 1) / g;
+/// points of the guard band (|st| > 1) return the continuation directions of the other
+/// hemisphere, which is what a baker must store there. Give texel centres to bake a texel.
+/// Domain: uv clamped to [0, 1]^2, g to [RK_PARABOLOID_GUARD_MIN, 1].
+/// Max error: the uv -> dir -> uv round trip with rk_dual_paraboloid_uv is within 4.3e-7.
+/// Cost: 1 div + rk_paraboloid_decode.
+RK_INLINE vec3 rk_dual_paraboloid_dir(vec2 uv, float guard_scale)
+{
+    float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    float u = rk_saturate(uv.x);
+    float v = rk_saturate(uv.y);
+    float h = u < 0.5f ? 1.0f : -1.0f;
+    float uh = h > 0.0f ? 2.0f * u : 2.0f * u - 1.0f;
+    vec2 st = vec2(2.0f * uh - 1.0f, 2.0f * v - 1.0f) / g;
+    return rk_paraboloid_decode(st, h);
+}
+
+// ---------------------------------------------------------------------------------------------
+// LOD selection (thesis §3.3: a per-pixel LOD bias from the angle of incidence)
+
+/// rk_paraboloid_lod_from_incidence: the thesis's blur of window reflections as a LOD (or bias)
+/// that grows with the angle of incidence: lod_at_grazing * (1 - cos_i). The thesis gives no
+/// function; linear in (1 - cos) is 0 at normal incidence, lod_at_grazing at grazing incidence and
+/// grows fastest where the ghost images of the pane's internal reflections separate most.
+/// cos_i clamped to [0, 1], lod_at_grazing to [0, 16]. Exact (1 rounding). Cost: 2 flops.
+RK_INLINE float rk_paraboloid_lod_from_incidence(float cos_i, float lod_at_grazing)
+{
+    return clamp(lod_at_grazing, 0.0f, 16.0f) * (1.0f - rk_saturate(cos_i));
+}
+
+/// rk_paraboloid_texel_angle: the angle (radians) one level-0 texel spans at st in an atlas with
+/// halves of half_size texels and guard scale g: one texel spans 2 / (g half_size) of st and one
+/// unit of st spans 2 / (1 + s^2 + t^2) radians, so the texel angle is
+/// 4 / ((1 + s^2 + t^2) g half_size): largest at the centre, half of it on the rim. For a single
+/// square map of n texels pass half_size = n. Domain: st as rk_paraboloid_solid_angle_density,
+/// half_size clamped to [1, 2^24], guard_scale to [RK_PARABOLOID_GUARD_MIN, 1]. Max error: 3 ulp.
+/// Cost: 1 div, 5 flops.
+RK_INLINE float rk_paraboloid_texel_angle(vec2 st, float half_size, float guard_scale)
+{
+    float r2 = min(st.x * st.x + st.y * st.y, 1.0e18f);
+    float n = clamp(half_size, 1.0f, 16777216.0f);
+    float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    return 4.0f / ((1.0f + r2) * g * n);
+}
+
+/// rk_paraboloid_lod_for_cone: the mip level whose texels span `cone_angle` radians at st:
+/// log2(cone_angle / rk_paraboloid_texel_angle(st, ...)), clamped to [0, max_lod] (max_lod to
+/// [0, 16]). Converts a physical blur (e.g. a roughness or the spread of the pane's ghost images)
+/// into an explicit LOD for textureLod; a cone of one texel gives 0, twice that 1.
+/// cone_angle clamped to [1e-20, 1e20]. Max error: that of log2 (GLSL: 3 ulp). Cost: 2 log2 + texel
+/// angle.
+RK_INLINE float rk_paraboloid_lod_for_cone(vec2 st, float cone_angle, float half_size, float guard_scale,
+                                           float max_lod)
+{
+    float a = clamp(cone_angle, 1.0e-20f, 1.0e20f);
+    float lod = log2(a) - log2(rk_paraboloid_texel_angle(st, half_size, guard_scale));
+    return clamp(lod, 0.0f, clamp(max_lod, 0.0f, 16.0f));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering into a paraboloid map (Brabec et al. 2002)
+//
+// TESSELLATION CAVEAT: the projection below is non-linear and is applied per vertex, but the
+// rasteriser interpolates linearly between the projected vertices, so a straight edge that should
+// map to a curve stays straight and long triangles land in the wrong texels (thesis Fig. 3.10);
+// triangles spanning both hemispheres are mangled (their far vertex projects outside the disk)
+// and must be clipped (rk_paraboloid_clip_distance) and rendered again into the other half.
+// Either tessellate so that every edge subtends a few texels at most, or do as the thesis does
+// for environment maps: render a cube map and resample it (raykit::bake_dual_paraboloid). The
+// direct projection suits well-tessellated occluders in dual-paraboloid shadow maps.
+
+/// rk_paraboloid_depth_encode: linear-distance depth (dist - z_near) / (z_far - z_near) in [0, 1]
+/// (Brabec: the distance to the centre, not a projective z). Domain: all three clamped to
+/// [0, RK_PARABOLOID_POS_MAX]; z_far - z_near floored at 1e-18; the result clamped to
+/// [-1e6, 1e6]. Max error: 2 ulp. Cost: 1 div, 2 flops.
+RK_INLINE float rk_paraboloid_depth_encode(float dist, float z_near, float z_far)
+{
+    float d = clamp(dist, 0.0f, RK_PARABOLOID_POS_MAX);
+    float n = clamp(z_near, 0.0f, RK_PARABOLOID_POS_MAX);
+    float f = clamp(z_far, 0.0f, RK_PARABOLOID_POS_MAX);
+    return clamp((d - n) / max(f - n, 1.0e-18f), -1.0e6f, 1.0e6f);
+}
+
+/// rk_paraboloid_depth_decode: the distance of a depth from rk_paraboloid_depth_encode,
+/// z_near + depth (z_far - z_near). depth clamped to [-1e6, 1e6]. Cost: 1 fma.
+RK_INLINE float rk_paraboloid_depth_decode(float depth, float z_near, float z_far)
+{
+    float n = clamp(z_near, 0.0f, RK_PARABOLOID_POS_MAX);
+    float f = clamp(z_far, 0.0f, RK_PARABOLOID_POS_MAX);
+    return n + clamp(depth, -1.0e6f, 1.0e6f) * (f - n);
+}
+
+/// rk_paraboloid_project: Brabec-style clip-space position of a vertex at p (in the map's frame,
+/// relative to its centre) for the half hemi, when rendering straight into one half of the atlas
+/// (glViewport on that half, so NDC [-1, 1] covers it): xy = guard_scale * rk_paraboloid_encode(p),
+/// z = 2 depth - 1 with the linear-distance depth (GL's default depth range; with
+/// glClipControl(GL_ZERO_TO_ONE) or Vulkan use rk_paraboloid_depth_encode instead), w = 1 (no
+/// perspective division: the caveat above). Pair with rk_paraboloid_clip_distance.
+/// p clamped to ±RK_PARABOLOID_POS_MAX; p = 0 returns z = -2 (clipped). Cost: 1 sqrt, 2 div.
+RK_INLINE vec4 rk_paraboloid_project(vec3 p, float z_near, float z_far, float hemi, float guard_scale)
+{
+    vec3 q = clamp(p, vec3(-RK_PARABOLOID_POS_MAX), vec3(RK_PARABOLOID_POS_MAX));
+    float dist = length(q);  // <= 1.8e18, no overflow
+    if (dist < RK_FLT_MIN) {
+        return vec4(0.0f, 0.0f, -2.0f, 1.0f);
+    }
+    float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    vec2 st = rk_paraboloid_encode(q, hemi);
+    float z = 2.0f * rk_paraboloid_depth_encode(dist, z_near, z_far) - 1.0f;
+    return vec4(g * st.x, g * st.y, z, 1.0f);
+}
+
+/// rk_paraboloid_clip_distance: a gl_ClipDistance value that is >= 0 for the directions one half
+/// of the atlas covers up to its edge (|st| <= 1 / guard_scale, the hemisphere plus the guard
+/// band): hemi p.z - z_min |p| with z_min = (g^2 - 1) / (g^2 + 1) <= 0, the cone of the edge
+/// (the plane hemi z = 0 when g = 1, Brabec's hemisphere cull). The rasteriser interpolates it
+/// linearly, so for large triangles the clip edge is approximate (the tessellation caveat).
+/// p clamped to ±RK_PARABOLOID_POS_MAX. Max error: 3 ulp of |p|. Cost: 1 sqrt, 1 div, 4 flops.
+RK_INLINE float rk_paraboloid_clip_distance(vec3 p, float hemi, float guard_scale)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    vec3 q = clamp(p, vec3(-RK_PARABOLOID_POS_MAX), vec3(RK_PARABOLOID_POS_MAX));
+    float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
+    float g2 = g * g;
+    float z_min = (g2 - 1.0f) / (g2 + 1.0f);
+    return h * q.z - z_min * length(q);
+}
+
+#endif  // RK_PARABOLOID_GLSL

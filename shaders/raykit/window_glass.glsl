@@ -1,0 +1,135 @@
+// raykit — window_glass.glsl: shading of a window pane: the environment reflection weighted by the
+// pane's Fresnel reflectance (exact or fast, with the multiple reflections inside the pane), plus
+// the interior seen through the tinted glass.
+//
+// Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/window_glass.hpp.
+// Source: Fahlén 2005 §3.1-3.2 (reflections in building windows: Fresnel with the slab's multiple
+// reflections, Eq. 3.7-3.8, weighting an environment-map reflection); seed002.md §3.2 (per
+// polarisation order, N panes). The reflection colour comes from the caller (a dual-paraboloid
+// or cube lookup, see paraboloid_sample.glsl and envmap_correction.glsl), the interior colour
+// from interior mapping or any other source.
+//
+// The model, per RGB channel:
+//   colour = R reflection + (1 - R) tint interior
+// R is the pane's reflectance at the viewing angle (non-absorbing panes, incoherent multiple
+// reflections), 1 - R the light the pane transmits, and tint in [0, 1] the glass's colour filter
+// applied once to the transmitted light. Absorption is not fed back into R (the internal bounces
+// carry R_slab - R_surface = 0.039 of the light at normal incidence for n = 1.52, before
+// absorption); rk_window_glass_slab_absorbing gives the exact absorbing slab where that matters.
+// Reflections are not tinted (the first surface, which dominates, reflects before any absorption).
+//
+// Feature macros:
+//   RK_WINDOW_GLASS_FRESNEL  which reflectance rk_window_glass_reflectance() returns (default 0):
+//       0 exact: rk_fresnel_window (fresnel.glsl), i.e. the pane model of RK_FRESNEL_WINDOW_MODE
+//         (default 2: one pane, multiple reflections summed per polarisation; 3: `panes` panes).
+//       1 fast: rk_fresnel_dielectric_fast (no square root) then rk_fresnel_glazing over `panes`
+//         panes (the slab applied to the polarisation average, the thesis's order). Max abs error
+//         against rk_window_glass_reflectance_exact (per-polarisation glazing), n = 1.52: 0.022
+//         for one pane (the thesis's order alone accounts for 0.0236, partly cancelled by the fast
+//         Fresnel's own error), 0.062 for two panes (tests/test_envmap_correction.cpp prints them).
+//
+// @rk-es 310
+// @rk-variants RK_WINDOW_GLASS_FRESNEL=0 | RK_WINDOW_GLASS_FRESNEL=1 | RK_WINDOW_GLASS_FRESNEL=0 RK_FRESNEL_WINDOW_MODE=3 | RK_WINDOW_GLASS_FRESNEL=1 RK_FRESNEL_WINDOW_MODE=1
+#ifndef RK_WINDOW_GLASS_GLSL
+#define RK_WINDOW_GLASS_GLSL
+
+#include "color.glsl"
+#include "fresnel.glsl"
+
+#ifndef RK_WINDOW_GLASS_FRESNEL
+#define RK_WINDOW_GLASS_FRESNEL 0
+#endif
+
+// Relative index of uncoated window glass (thesis §3.1.1, after Wloka).
+#define RK_WINDOW_GLASS_ETA 1.52f
+
+/// rk_window_glass_cos: |N·V|, the cosine of the viewing angle on either side of the pane (a pane
+/// reflects the same from both sides). normal and to_eye (from the surface towards the eye) are
+/// unit vectors; their components are clamped to [-1, 1] so no input overflows. Result in [0, 1].
+/// Cost: 1 dot, 1 abs, 1 min.
+RK_INLINE float rk_window_glass_cos(vec3 normal, vec3 to_eye)
+{
+    vec3 n = clamp(normal, vec3(-1.0f), vec3(1.0f));
+    vec3 v = clamp(to_eye, vec3(-1.0f), vec3(1.0f));
+    return min(abs(dot(n, v)), 1.0f);
+}
+
+/// rk_window_glass_reflectance_exact: the exact reflectance of `panes` identical non-absorbing
+/// panes (two surfaces each), incoherent multiple reflections summed per polarisation:
+/// rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes). One pane, n = 1.52:
+/// 0.081682 at normal incidence, 0.15653 at 60°, 0.75435 at 85° (seed002.md §3.2). Domain as in
+/// fresnel.glsl (cos_i in [0, 1], eta clamped, panes in [0, 1e6]). Max error: 1e-6.
+/// Cost: 1 sqrt, 4 div, ~30 flops.
+RK_INLINE float rk_window_glass_reflectance_exact(float cos_i, float eta, float panes)
+{
+    return rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes);
+}
+
+/// rk_window_glass_reflectance_fast: the cheap pane reflectance: the square-root-free
+/// rk_fresnel_dielectric_fast (params from rk_fresnel_fast_params(eta), a per-material constant),
+/// then rk_fresnel_glazing over `panes` panes applied to the polarisation average (the thesis's
+/// order, Eq. 3.8). Max abs error against rk_window_glass_reflectance_exact, n = 1.52: 0.022 for
+/// one pane (worst near 75°), 0.062 for two (tests/test_envmap_correction.cpp).
+/// Cost: 2 div, ~20 flops, no sqrt.
+RK_INLINE float rk_window_glass_reflectance_fast(float cos_i, vec3 params, float panes)
+{
+    return rk_fresnel_glazing(rk_fresnel_dielectric_fast(cos_i, params), panes);
+}
+
+/// rk_window_glass_reflectance: the reflectance selected by RK_WINDOW_GLASS_FRESNEL (see the
+/// file header). `panes` is read by the fast mode and by fresnel.glsl's RK_FRESNEL_WINDOW_MODE 3.
+/// The fast mode builds its params inline (one sqrt, folded when eta is a constant).
+RK_INLINE float rk_window_glass_reflectance(float cos_i, float eta, float panes)
+{
+#if RK_WINDOW_GLASS_FRESNEL == 1
+    return rk_window_glass_reflectance_fast(cos_i, rk_fresnel_fast_params(eta), panes);
+#else
+    return rk_fresnel_window(cos_i, eta, panes);
+#endif
+}
+
+/// rk_window_glass_combine: reflectance * reflection + (1 - reflectance) * tint * interior, the
+/// pane's colour from its two incoming radiances. Colours are sanitised (rk_hdr_sanitize: negative
+/// to 0, at most RK_HDR_MAX), reflectance and tint clamped to [0, 1]. With tint = 1 and equal
+/// inputs the output equals the input (energy conserving). Cost: ~10 flops.
+RK_INLINE vec3 rk_window_glass_combine(vec3 reflection, vec3 interior, float reflectance, vec3 tint)
+{
+    float r = rk_saturate(reflectance);
+    vec3 t = clamp(tint, vec3(0.0f), vec3(1.0f));
+    return r * rk_hdr_sanitize(reflection) + ((1.0f - r) * t) * rk_hdr_sanitize(interior);
+}
+
+/// rk_window_glass_shade: the whole pane: cos from normal and to_eye, the reflectance of
+/// rk_window_glass_reflectance(cos, eta, panes), then rk_window_glass_combine. `reflection` is the
+/// environment looked up along the (corrected) reflection vector, `interior` the colour behind the
+/// glass. Cost: that of the reflectance + ~15 flops.
+RK_INLINE vec3 rk_window_glass_shade(vec3 normal, vec3 to_eye, vec3 reflection, vec3 interior, vec3 tint, float eta,
+                                     float panes)
+{
+    float c = rk_window_glass_cos(normal, to_eye);
+    return rk_window_glass_combine(reflection, interior, rk_window_glass_reflectance(c, eta, panes), tint);
+}
+
+/// rk_window_glass_slab_absorbing: reflectance and transmittance of one absorbing pane per RGB
+/// channel, incoherent multiple reflections summed exactly: with the single-surface reflectance R
+/// (per polarisation in rsp, averaged at the end; pass vec2(R) for unpolarised) and the internal
+/// transmittance tau of one pass through the glass,
+///   R_pane = R + (1 - R)^2 tau^2 R / (1 - R^2 tau^2),   T_pane = (1 - R)^2 tau / (1 - R^2 tau^2).
+/// tau = 1 gives the slab 2R / (1 + R) and 1 - 2R / (1 + R). rsp and tau clamped to [0, 1]; the
+/// divisor is floored at RK_FLT_MIN (R = tau = 1 gives R_pane = 1, T_pane = 0). Use
+/// colour = R_pane reflection + T_pane interior. Max error: 4 ulp. Cost: 2 x (1 div, ~12 flops) x3.
+RK_INLINE void rk_window_glass_slab_absorbing(vec2 rsp, vec3 tau, RK_OUT(vec3) reflectance, RK_OUT(vec3) transmittance)
+{
+    vec3 t = clamp(tau, vec3(0.0f), vec3(1.0f));
+    vec3 t2 = t * t;
+    float rs = rk_saturate(rsp.x);
+    float rp = rk_saturate(rsp.y);
+    float ts = (1.0f - rs) * (1.0f - rs);
+    float tp = (1.0f - rp) * (1.0f - rp);
+    vec3 ds = max(vec3(1.0f) - (rs * rs) * t2, vec3(RK_FLT_MIN));
+    vec3 dp = max(vec3(1.0f) - (rp * rp) * t2, vec3(RK_FLT_MIN));
+    reflectance = 0.5f * (vec3(rs) + (ts * rs) * t2 / ds + vec3(rp) + (tp * rp) * t2 / dp);
+    transmittance = 0.5f * (ts * t / ds + tp * t / dp);
+}
+
+#endif  // RK_WINDOW_GLASS_GLSL

@@ -1,0 +1,360 @@
+// CPU tests of raykit/envmap_correction.hpp and raykit/window_glass.hpp (the C++ builds of
+// shaders/raykit/envmap_correction.glsl and window_glass.glsl) against float64 geometry and the
+// values of shared/reference/notes/seed002.md §3.2, §3.8 and §8.3.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "raykit/envmap_correction.hpp"
+#include "raykit/window_glass.hpp"
+#include "reference/fresnel_ref.hpp"
+#include "test_util.hpp"
+
+using namespace raykit;
+using rktest::ErrorStats;
+using rktest::fmt;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct D3 {
+    double x, y, z;
+};
+D3 dd(vec3 v) { return {v.x, v.y, v.z}; }
+double ddot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 dsub(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 dadd(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+D3 dmul(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dlen(D3 a) { return std::sqrt(ddot(a, a)); }
+/// Sine of the angle between two vectors (0 when parallel or antiparallel).
+double sin_between(D3 a, D3 b)
+{
+    const D3 c{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return dlen(c) / std::max(dlen(a) * dlen(b), 1e-300);
+}
+
+struct DirGen {
+    std::mt19937 rng;
+    std::normal_distribution<double> n{0.0, 1.0};
+    explicit DirGen(unsigned seed) : rng(seed) {}
+    vec3 operator()()
+    {
+        for (;;) {
+            const double x = n(rng), y = n(rng), z = n(rng);
+            const double l = std::sqrt(x * x + y * y + z * z);
+            if (l > 1e-6) return vec3(static_cast<float>(x / l), static_cast<float>(y / l), static_cast<float>(z / l));
+        }
+    }
+};
+
+const float kAdversarial[] = {0.0f,  -0.0f,  1e-45f, -1e-45f, 1e-40f,        1.17549435e-38f,
+                              1.0f,  -1.0f,  0.5f,   2.0f,    1e-20f,        -1e-20f,
+                              1e20f, -1e20f, 1e30f,  -1e30f,  3.4028235e38f, -3.4028235e38f};
+bool finite3(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The thesis's sigmoid (§3.2.4; x = angle in radians, seed002.md erratum 6)
+
+TEST(EnvmapCorrection, SigmoidPublishedValues)
+{
+    const float a = RK_ENVMAP_FAHLEN_A, k = RK_ENVMAP_FAHLEN_K;
+    EXPECT_NEAR(rk_envmap_sigmoid(0.9f, a, k), 0.5, 1e-7);
+    EXPECT_NEAR(rk_envmap_sigmoid(0.0f, a, k), 0.98566, 5e-6);
+    EXPECT_NEAR(rk_envmap_sigmoid(static_cast<float>(kPi / 2), a, k), 0.04098, 5e-6);
+    EXPECT_NEAR(rk_envmap_sigmoid(0.5f, a, k), 0.8676, 5e-5);
+    EXPECT_NEAR(rk_envmap_sigmoid(1.2f, a, k), 0.1962, 5e-5);
+    EXPECT_EQ(RK_ENVMAP_FAHLEN_D, 8.0f);
+    // Against float64 over the range, and the weight is σ(acos(N·R)).
+    ErrorStats s, w;
+    for (int i = 0; i <= 10000; ++i) {
+        const double x = kPi * i / 10000.0;
+        s.add(rk_envmap_sigmoid(static_cast<float>(x), a, k),
+              1.0 / (1.0 + std::exp(-(-4.7) * (static_cast<float>(x) - 0.9))), fmt("x", x));
+        const float c = static_cast<float>(std::cos(x));
+        w.add(rk_envmap_fahlen_weight(c, a, k), 1.0 / (1.0 + std::exp(4.7 * (std::acos(static_cast<double>(c)) - 0.9))),
+              fmt("cos", c));
+    }
+    std::printf("sigmoid vs float64: %s\nfahlen weight vs float64: %s\n", s.str().c_str(), w.str().c_str());
+    EXPECT_LT(s.max_abs, 3e-7);
+    EXPECT_LT(w.max_abs, 1e-6);
+    // Approximates cos at small angles, below it towards grazing (closer to cos^2).
+    EXPECT_NEAR(rk_envmap_fahlen_weight(std::cos(0.3f), a, k), std::cos(0.3), 0.03);
+    EXPECT_LT(rk_envmap_fahlen_weight(std::cos(1.4f), a, k), std::cos(1.4));
+}
+
+TEST(EnvmapCorrection, ZeroOffsetKeepsTheDirection)
+{
+    DirGen gen(3);
+    for (int i = 0; i < 1000; ++i) {
+        const vec3 r = gen(), n = gen(), zero(0.0f);
+        const vec3 c = gen() * 3.0f;
+        EXPECT_LT(sin_between(dd(rk_reflect_correct_sphere(r, zero, 5.0f)), dd(r)), 1e-7);
+        EXPECT_LT(sin_between(dd(rk_reflect_correct_plane_cos(r, n, zero, 8.0f)), dd(r)), 1e-7);
+        EXPECT_LT(sin_between(dd(rk_reflect_correct_fahlen(r, n, zero)), dd(r)), 1e-7);
+        if (glm::dot(r, n) > 0.0f) {
+            EXPECT_LT(sin_between(dd(rk_reflect_correct_plane(r, c, c, n, 8.0f)), dd(r)), 1e-6);
+        }
+        EXPECT_LT(sin_between(dd(rk_reflect_correct_box(r, c, c, c - vec3(4.0f), c + vec3(5.0f, 6.0f, 7.0f))), dd(r)),
+                  1e-6);
+    }
+    // Brennan: R + CP / r.
+    const vec3 b = rk_reflect_correct_sphere(vec3(0.0f, 0.0f, 1.0f), vec3(2.0f, -4.0f, 0.0f), 8.0f);
+    EXPECT_FLOAT_EQ(b.x, 0.25f);
+    EXPECT_FLOAT_EQ(b.y, -0.5f);
+    EXPECT_FLOAT_EQ(b.z, 1.0f);
+}
+
+TEST(EnvmapCorrection, ExactPlaneHitsThePlane)
+{
+    DirGen gen(5);
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    ErrorStats on_plane, on_ray;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 n = gen();
+        vec3 r = gen();
+        if (glm::dot(r, n) <= 0.0f) r = -r;
+        const float d = 2.0f + 30.0f * (u(rng) + 1.0f);
+        const vec3 c = vec3(u(rng), u(rng), u(rng)) * 50.0f;
+        // P in front of the plane: anywhere on the window side, up to d from C along N.
+        const vec3 p = c + vec3(u(rng), u(rng), u(rng)) * 10.0f;
+        if (glm::dot(p - c, n) >= d) continue;
+        const vec3 v = rk_reflect_correct_plane(r, p, c, n, d);
+        const double w = ddot(dd(glm::normalize(r)), dd(n));
+        if (w < 1e-3) continue;  // near-grazing: the hit is far away; checked for finiteness below
+        const D3 hit = dadd(dd(c), dmul(dd(v), 1.0 / w));            // v = (H - C) (R·N)
+        const double scale = std::max(1.0, dlen(dsub(hit, dd(c))));  // the hit's distance from C
+        on_plane.add((ddot(dsub(hit, dd(c)), dd(n)) - d) / scale, 0.0, fmt("i", i));
+        on_ray.add(sin_between(dsub(hit, dd(p)), dd(r)) * dlen(dsub(hit, dd(p))) / scale, 0.0, fmt("i", i));
+    }
+    std::printf("exact plane: ((H - C).N - d) / |H - C| %s\n             distance of H from the ray (relative) %s\n",
+                on_plane.str().c_str(), on_ray.str().c_str());
+    EXPECT_LT(on_plane.max_abs, 2e-6);
+    EXPECT_LT(on_ray.max_abs, 2e-6);
+}
+
+TEST(EnvmapCorrection, ExactPlaneEqualsThesisPlaneModelForPointsOnTheWindow)
+{
+    // P on the window plane through C (CP·N = 0): the exact correction and the thesis's un-tweaked
+    // R + CP (N·R) / d give the same direction.
+    DirGen gen(7);
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const vec3 n = gen();
+        vec3 r = gen();
+        if (glm::dot(r, n) <= 0.01f) continue;
+        vec3 cp = vec3(u(rng), u(rng), u(rng)) * 6.0f;
+        cp -= glm::dot(cp, n) * n;
+        const vec3 c(1.0f, 2.0f, 3.0f);
+        const vec3 exact = rk_reflect_correct_plane(r, c + cp, c, n, 8.0f);
+        const vec3 thesis = rk_reflect_correct_plane_cos(r, n, cp, 8.0f);
+        worst = std::max(worst, sin_between(dd(exact), dd(thesis)));
+        ASSERT_GT(glm::dot(exact, thesis), 0.0f);
+    }
+    EXPECT_LT(worst, 2e-6);
+}
+
+TEST(EnvmapCorrection, BoxProjectionHitsTheBox)
+{
+    DirGen gen(9);
+    std::mt19937 rng(10);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    ErrorStats surface, ray;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 lo(-10.0f * u(rng) - 1.0f, -5.0f * u(rng) - 1.0f, -20.0f * u(rng) - 1.0f);
+        const vec3 hi(10.0f * u(rng) + 1.0f, 5.0f * u(rng) + 1.0f, 20.0f * u(rng) + 1.0f);
+        const vec3 p = lo + (hi - lo) * vec3(u(rng), u(rng), u(rng));
+        const vec3 c = lo + (hi - lo) * vec3(u(rng), u(rng), u(rng));
+        const vec3 r = gen();
+        const vec3 v = rk_reflect_correct_box(r, p, c, lo, hi);
+        const D3 hit = dadd(dd(c), dd(v));
+        // float64 slab method: the exit point of the ray from P.
+        double t = 1e300;
+        const double pd[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z}, lod[3] = {lo.x, lo.y, lo.z},
+                     hid[3] = {hi.x, hi.y, hi.z};
+        for (int a = 0; a < 3; ++a) {
+            if (rd[a] > 0) t = std::min(t, (hid[a] - pd[a]) / rd[a]);
+            if (rd[a] < 0) t = std::min(t, (lod[a] - pd[a]) / rd[a]);
+        }
+        const D3 want = dadd(dd(p), dmul(dd(r), t));
+        const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+        // On the box surface: inside the box and on one of its faces.
+        const double h[3] = {hit.x, hit.y, hit.z};
+        double face = 1e300, outside = 0;
+        for (int a = 0; a < 3; ++a) {
+            face = std::min({face, std::abs(h[a] - lod[a]), std::abs(h[a] - hid[a])});
+            outside = std::max({outside, lod[a] - h[a], h[a] - hid[a]});
+        }
+        surface.add(std::max(face, outside) / size, 0.0, fmt("i", i));
+        ray.add(dlen(dsub(hit, want)) / size, 0.0, fmt("i", i));
+    }
+    std::printf(
+        "box: distance of C + result from the box surface / size %s\n     from the float64 exit point / size %s\n",
+        surface.str().c_str(), ray.str().c_str());
+    EXPECT_LT(surface.max_abs, 1e-6);
+    EXPECT_LT(ray.max_abs, 2e-6);
+    // Axis-aligned rays hit exactly.
+    const vec3 lo(-2.0f, -3.0f, -4.0f), hi(5.0f, 6.0f, 7.0f), p(1.0f, 1.0f, 1.0f), c(0.5f, -1.0f, 2.0f);
+    const vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const vec3 hits[6] = {{5, 1, 1}, {-2, 1, 1}, {1, 6, 1}, {1, -3, 1}, {1, 1, 7}, {1, 1, -4}};
+    for (int a = 0; a < 6; ++a) {
+        const vec3 hit = c + rk_reflect_correct_box(axes[a], p, c, lo, hi);
+        EXPECT_EQ(hit.x, hits[a].x);
+        EXPECT_EQ(hit.y, hits[a].y);
+        EXPECT_EQ(hit.z, hits[a].z);
+    }
+}
+
+TEST(EnvmapCorrection, GrazingAndAdversarialInputsStayFinite)
+{
+    // Grazing: R in the window plane (N·R = 0, ±0, tiny, slightly negative).
+    const vec3 n(0.0f, 0.0f, 1.0f), cp(1.0f, 2.0f, 0.0f);
+    for (float z : {0.0f, -0.0f, 1e-45f, 1e-30f, 1e-7f, -1e-7f, -1e-30f}) {
+        const vec3 r = glm::normalize(vec3(1.0f, 0.3f, 0.0f)) + vec3(0.0f, 0.0f, z);
+        EXPECT_TRUE(finite3(rk_reflect_correct_plane(r, cp, vec3(0.0f), n, 8.0f))) << z;
+        EXPECT_TRUE(finite3(rk_reflect_correct_plane_cos(r, n, cp, 8.0f))) << z;
+        EXPECT_TRUE(finite3(rk_reflect_correct_fahlen(r, n, cp))) << z;
+        EXPECT_TRUE(finite3(rk_reflect_correct_box(r, cp, vec3(0.0f), vec3(-5.0f), vec3(5.0f)))) << z;
+        // Exactly grazing: the exact plane correction tends to R (hit at infinity).
+        if (z <= 0.0f) {
+            EXPECT_LT(sin_between(dd(rk_reflect_correct_plane(r, cp, vec3(0.0f), n, 8.0f)), dd(r)), 1e-6) << z;
+        }
+    }
+    EXPECT_TRUE(finite3(rk_reflect_correct_plane(vec3(0.0f), vec3(0.0f), vec3(0.0f), vec3(0.0f), 0.0f)));
+    long checked = 0;
+    for (float a : kAdversarial) {
+        for (float b : kAdversarial) {
+            for (float c : kAdversarial) {
+                const vec3 v(a, b, c), w(c, a, b), x(b, c, a);
+                ASSERT_TRUE(std::isfinite(rk_envmap_sigmoid(a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_envmap_fahlen_weight(a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_envmap_angle(a)));
+                ASSERT_TRUE(finite3(rk_envmap_normalize(v, vec3(0.0f))));
+                ASSERT_TRUE(finite3(rk_reflect_correct_sphere(v, w, c))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_plane_cos(v, w, x, a))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_fahlen(v, w, x, b, c, a))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_fahlen(v, w, x))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_plane(v, w, x, v, a))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_box(v, w, x, vec3(-a), vec3(b)))) << fmt(a, b, c);
+                ASSERT_TRUE(finite3(rk_reflect_correct_box(v, w, x, v, w))) << fmt(a, b, c);
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 5000);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Window glass (window_glass.glsl)
+
+TEST(WindowGlass, ReflectanceModels)
+{
+    // One pane, n = 1.52, per-polarisation slab (seed002.md §3.2 table).
+    EXPECT_NEAR(rk_window_glass_reflectance_exact(1.0f, 1.52f, 1.0f), 0.0816820, 2e-7);
+    EXPECT_NEAR(rk_window_glass_reflectance_exact(std::cos(60.0f * 3.14159265f / 180.0f), 1.52f, 1.0f), 0.15653, 1e-5);
+    EXPECT_NEAR(rk_window_glass_reflectance_exact(std::cos(85.0f * 3.14159265f / 180.0f), 1.52f, 1.0f), 0.75435, 1e-5);
+    EXPECT_NEAR(rk_window_glass_reflectance_exact(1.0f, 1.52f, 2.0f), 0.1510277, 2e-7);  // double glazing
+    // The default build (RK_WINDOW_GLASS_FRESNEL 0, RK_FRESNEL_WINDOW_MODE 2) is rk_fresnel_window.
+    ErrorStats fast1, fast2, order;
+    const vec3 params = rk_fresnel_fast_params(1.52f);
+    for (int i = 0; i <= 100000; ++i) {
+        const float c = static_cast<float>(i) / 100000.0f;
+        EXPECT_EQ(rk_window_glass_reflectance(c, 1.52f, 1.0f), rk_fresnel_window(c, 1.52f, 1.0f));
+        fast1.add(rk_window_glass_reflectance_fast(c, params, 1.0f), rk_window_glass_reflectance_exact(c, 1.52f, 1.0f),
+                  fmt("cos", c));
+        fast2.add(rk_window_glass_reflectance_fast(c, params, 2.0f), rk_window_glass_reflectance_exact(c, 1.52f, 2.0f),
+                  fmt("cos", c));
+        // The part of the fast model's error that is the thesis's order (slab of the average).
+        order.add(rk_fresnel_slab(rk_fresnel_dielectric(c, 1.52f)), rk_window_glass_reflectance_exact(c, 1.52f, 1.0f),
+                  fmt("cos", c));
+    }
+    std::printf(
+        "window glass fast vs exact, 1 pane: %s\n                            2 panes: %s\n"
+        "thesis order (slab of the exact average) vs exact, 1 pane: %s\n",
+        fast1.str().c_str(), fast2.str().c_str(), order.str().c_str());
+    EXPECT_LT(fast1.max_abs, 0.0225);
+    EXPECT_LT(fast2.max_abs, 0.0625);
+    EXPECT_NEAR(order.max_abs, 0.0236, 5e-4);
+}
+
+TEST(WindowGlass, CombineAndShade)
+{
+    const vec3 refl(0.9f, 0.5f, 0.1f), inter(0.2f, 0.4f, 0.8f), tint(0.8f, 0.9f, 1.0f);
+    // R = 0: interior through the tint; R = 1: the reflection.
+    const vec3 a = rk_window_glass_combine(refl, inter, 0.0f, tint);
+    EXPECT_FLOAT_EQ(a.x, 0.16f);
+    EXPECT_FLOAT_EQ(a.z, 0.8f);
+    const vec3 b = rk_window_glass_combine(refl, inter, 1.0f, tint);
+    EXPECT_FLOAT_EQ(b.y, 0.5f);
+    // Energy: untinted, equal radiance on both sides -> unchanged.
+    for (int i = 0; i <= 100; ++i) {
+        const float r = static_cast<float>(i) / 100.0f;
+        const vec3 e = rk_window_glass_combine(vec3(0.7f), vec3(0.7f), r, vec3(1.0f));
+        EXPECT_NEAR(e.x, 0.7, 1e-7);
+    }
+    // Shade = combine at the pane's reflectance for |N·V|, same from both sides.
+    const vec3 nrm(0.0f, 0.0f, 1.0f);
+    const vec3 v = glm::normalize(vec3(0.6f, 0.0f, 0.8f));
+    const float c = 0.8f;
+    const vec3 s = rk_window_glass_shade(nrm, v, refl, inter, tint, 1.52f, 1.0f);
+    const vec3 want = rk_window_glass_combine(refl, inter, rk_fresnel_window(c, 1.52f, 1.0f), tint);
+    EXPECT_NEAR(s.x, want.x, 1e-6);
+    const vec3 back = rk_window_glass_shade(nrm, vec3(v.x, v.y, -v.z), refl, inter, tint, 1.52f, 1.0f);
+    EXPECT_NEAR(back.y, s.y, 1e-7);
+    EXPECT_NEAR(rk_window_glass_cos(nrm, v), 0.8, 1e-7);
+}
+
+TEST(WindowGlass, AbsorbingSlabMatchesSeries)
+{
+    for (float r : {0.0f, 0.04258f, 0.2f, 0.6f, 0.95f}) {
+        for (float tau : {1.0f, 0.9f, 0.5f, 0.0f}) {
+            // Series: R + T^2 tau^2 R (1 + (R tau)^2 + ...), transmission T^2 tau (1 + (R tau)^2 + ...).
+            double rs = r, ts = 0, term = static_cast<double>(tau);
+            const double t2 = (1.0 - r) * (1.0 - r);
+            for (int k = 0; k < 400; ++k) {
+                ts += t2 * term;
+                rs += t2 * term * tau * r;
+                term *= static_cast<double>(r) * r * tau * tau;
+            }
+            vec3 refl(0.0f), trans(0.0f);
+            rk_window_glass_slab_absorbing(vec2(r), vec3(tau), refl, trans);
+            EXPECT_NEAR(refl.x, rs, 2e-7) << r << " " << tau;
+            EXPECT_NEAR(trans.x, ts, 2e-7) << r << " " << tau;
+            if (tau == 1.0f) {  // the slab of fresnel.glsl
+                EXPECT_NEAR(refl.x, rk_fresnel_slab(r), 2e-7);
+                EXPECT_NEAR(trans.x, 1.0 - rk_fresnel_slab(r), 2e-7);
+            }
+        }
+    }
+    vec3 refl(0.0f), trans(0.0f);
+    rk_window_glass_slab_absorbing(vec2(1.0f), vec3(1.0f), refl, trans);
+    EXPECT_EQ(refl.x, 1.0f);
+    EXPECT_EQ(trans.x, 0.0f);
+}
+
+TEST(WindowGlass, AdversarialInputsStayFinite)
+{
+    for (float a : kAdversarial) {
+        for (float b : kAdversarial) {
+            for (float c : kAdversarial) {
+                const vec3 v(a, b, c), w(c, a, b);
+                ASSERT_TRUE(std::isfinite(rk_window_glass_cos(v, w)));
+                ASSERT_TRUE(std::isfinite(rk_window_glass_reflectance(a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_window_glass_reflectance_exact(a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_window_glass_reflectance_fast(a, rk_fresnel_fast_params(b), c)));
+                ASSERT_TRUE(finite3(rk_window_glass_combine(v, w, a, vec3(b))));
+                ASSERT_TRUE(finite3(rk_window_glass_shade(v, w, v, w, vec3(a), b, c)));
+                vec3 r(0.0f), t(0.0f);
+                rk_window_glass_slab_absorbing(vec2(a, b), v, r, t);
+                ASSERT_TRUE(finite3(r) && finite3(t));
+            }
+        }
+    }
+}

@@ -1,0 +1,815 @@
+// CPU tests of raykit/paraboloid.hpp (the C++ build of shaders/raykit/paraboloid.glsl plus the CPU
+// baking) against float64 formulas and the values of shared/reference/notes/seed002.md §3.7 / §8.2,
+// and the accuracy-vs-budget comparison of issue 5 item 6 (dual paraboloid vs octahedral vs cube).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "raykit/paraboloid.hpp"
+#include "test_util.hpp"
+
+using namespace raykit;
+using rktest::ErrorStats;
+using rktest::fmt;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct D3 {
+    double x, y, z;
+};
+
+D3 to_d(vec3 v) { return {v.x, v.y, v.z}; }
+double dist(vec3 a, D3 b)
+{
+    const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+double angle_between(vec3 a, vec3 b)
+{
+    const D3 x = to_d(a), y = to_d(b);
+    const double cx = x.y * y.z - x.z * y.y, cy = x.z * y.x - x.x * y.z, cz = x.x * y.y - x.y * y.x;
+    return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), x.x * y.x + x.y * y.y + x.z * y.z);
+}
+
+/// Uniform random unit vectors (float, normalised in double).
+struct DirGen {
+    std::mt19937 rng;
+    std::normal_distribution<double> n{0.0, 1.0};
+    explicit DirGen(unsigned seed) : rng(seed) {}
+    vec3 operator()()
+    {
+        for (;;) {
+            const double x = n(rng), y = n(rng), z = n(rng);
+            const double l = std::sqrt(x * x + y * y + z * z);
+            if (l > 1e-6) return vec3(static_cast<float>(x / l), static_cast<float>(y / l), static_cast<float>(z / l));
+        }
+    }
+};
+
+float ramp(float x, float a, float b) { return glm::clamp((x - a) / (b - a), 0.0f, 1.0f); }
+
+/// A synthetic environment in [0, 1]: sky gradient over a darker ground (y up) with a soft horizon,
+/// a band-limited "facade" pattern and a sharp sun lobe: smooth and sharp content together.
+vec3 city_env(vec3 d)
+{
+    const float y = glm::clamp(d.y, -1.0f, 1.0f);
+    const float h = ramp(y, -0.04f, 0.04f);
+    const vec3 sky = glm::mix(vec3(0.45f, 0.55f, 0.70f), vec3(0.20f, 0.35f, 0.65f), ramp(y, 0.0f, 1.0f));
+    const vec3 ground(0.22f, 0.20f, 0.17f);
+    const float phi = std::atan2(d.x, d.z), el = std::asin(y);
+    const float facade = 0.5f + 0.5f * std::sin(12.0f * phi) * std::sin(8.0f * el);
+    const vec3 base = glm::mix(ground, sky, h) * (0.75f + 0.25f * facade);
+    const vec3 sun_dir = glm::normalize(vec3(0.3f, 0.5f, 0.8f));
+    const float sun = 0.6f * std::exp(200.0f * (glm::dot(d, sun_dir) - 1.0f));
+    return glm::clamp(base + vec3(sun), vec3(0.0f), vec3(1.0f));
+}
+
+vec3 identity_env(vec3 d) { return d; }
+
+/// Error statistics of colour lookups: max abs over channels, MSE, PSNR for peak 1.
+struct ColourError {
+    double max_abs = 0, sse = 0;
+    long n = 0;
+    void add(vec3 got, vec3 want)
+    {
+        for (int c = 0; c < 3; ++c) {
+            const double e = static_cast<double>(got[c]) - want[c];
+            max_abs = std::max(max_abs, std::abs(e));
+            sse += e * e;
+            ++n;
+        }
+    }
+    double psnr() const { return n ? 10.0 * std::log10(1.0 / std::max(sse / static_cast<double>(n), 1e-30)) : 0.0; }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Encode / decode
+
+TEST(Paraboloid, RoundTripBelow1e6BothConventions)
+{
+    DirGen gen(11);
+    for (float hemi : {1.0f, -1.0f}) {
+        ErrorStats dir_rt, st_rt, enc;
+        for (int i = 0; i < 100000; ++i) {
+            vec3 d = gen();
+            if (d.z * hemi < 0.0f) d.z = -d.z;  // into the hemisphere
+            const vec2 st = rk_paraboloid_encode(d, hemi);
+            const vec3 back = rk_paraboloid_decode(st, hemi);
+            dir_rt.add(dist(back, to_d(d)), 0.0, fmt(d.x, d.y, d.z));
+            // float64 reference of the encode (thesis Eq. 3.12 for hemi = -1)
+            const double den = 1.0 + static_cast<double>(hemi) * d.z;
+            enc.add(st.x, d.x / den, fmt(d.x, d.y, d.z));
+            enc.add(st.y, d.y / den, fmt(d.x, d.y, d.z));
+        }
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        ErrorStats dec, nrm;
+        for (int i = 0; i < 200000; ++i) {
+            vec2 st(u(rng), u(rng));
+            if (glm::dot(st, st) > 1.0f) continue;
+            const vec3 d = rk_paraboloid_decode(st, hemi);
+            const vec2 back = rk_paraboloid_encode(d, hemi);
+            st_rt.add(std::hypot(back.x - st.x, back.y - st.y), 0.0, fmt(st.x, st.y));
+            const double q = 1.0 + static_cast<double>(st.x) * st.x + static_cast<double>(st.y) * st.y;
+            const double want[3] = {2.0 * st.x / q, 2.0 * st.y / q, hemi * (2.0 - q) / q};
+            if (i % 8 != 0) continue;  // (ErrorStats formats every input: keep the test fast)
+            for (int c = 0; c < 3; ++c) dec.add(d[c], want[c], fmt(st.x, st.y));
+            const vec3 v(u(rng) * 1e3f, u(rng), u(rng) * 1e-3f);
+            const vec3 nv = rk_paraboloid_normalize(v, vec3(0.0f));
+            const double l = std::sqrt(static_cast<double>(v.x) * v.x + static_cast<double>(v.y) * v.y +
+                                       static_cast<double>(v.z) * v.z);
+            for (int c = 0; c < 3; ++c)
+                nrm.add(nv[c], v[c] / l, fmt(v.x, v.y, v.z), rktest::ulp_error(nv[c], v[c] / l));
+        }
+        std::printf("          decode vs float64 %s\n          normalize vs float64 %s\n", dec.str().c_str(),
+                    nrm.str().c_str());
+        EXPECT_LT(dec.max_abs, 2.5e-7) << dec.str();
+        EXPECT_LT(nrm.max_abs, 2e-7) << nrm.str();
+        std::printf("hemi %+.0f: dir -> st -> dir %s\n          st -> dir -> st %s\n          encode vs float64 %s\n",
+                    static_cast<double>(hemi), dir_rt.str().c_str(), st_rt.str().c_str(), enc.str().c_str());
+        EXPECT_LE(dir_rt.max_abs, 1e-6) << dir_rt.str();
+        EXPECT_LE(st_rt.max_abs, 1e-6) << st_rt.str();
+        EXPECT_LE(enc.max_abs, 4e-7) << enc.str();
+    }
+}
+
+TEST(Paraboloid, CentreRimAndThesisFormulas)
+{
+    for (float hemi : {1.0f, -1.0f}) {
+        const vec2 c = rk_paraboloid_encode(vec3(0.0f, 0.0f, hemi), hemi);
+        EXPECT_EQ(c.x, 0.0f);
+        EXPECT_EQ(c.y, 0.0f);
+        const vec3 d0 = rk_paraboloid_decode(vec2(0.0f), hemi);
+        EXPECT_EQ(d0.z, hemi);
+        for (int i = 0; i < 360; ++i) {
+            const double a = 2.0 * kPi * i / 360.0;
+            const vec3 eq(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0.0f);
+            const vec2 st = rk_paraboloid_encode(eq, hemi);
+            EXPECT_NEAR(std::hypot(st.x, st.y), 1.0, 2e-7) << a;  // the rim is the equator
+            const vec3 r =
+                rk_paraboloid_decode(vec2(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))), hemi);
+            EXPECT_NEAR(r.z, 0.0, 1e-7);
+            EXPECT_NEAR(r.x, std::cos(a), 2e-7);
+            EXPECT_NEAR(r.y, std::sin(a), 2e-7);
+        }
+    }
+    // The thesis's front side faces d0 = -z: Eq. 3.10 and 3.12 literally.
+    const float s = 0.3f, t = -0.45f;
+    const vec3 r = rk_paraboloid_decode(vec2(s, t), -1.0f);
+    const double q = s * s + t * t + 1.0;
+    EXPECT_NEAR(r.x, 2.0 * s / q, 1e-7);
+    EXPECT_NEAR(r.y, 2.0 * t / q, 1e-7);
+    EXPECT_NEAR(r.z, (-1.0 + s * s + t * t) / q, 1e-7);
+    const vec2 st = rk_paraboloid_encode(r, -1.0f);
+    EXPECT_NEAR(st.x, r.x / (1.0 - r.z), 1e-7);
+    EXPECT_NEAR(st.y, r.y / (1.0 - r.z), 1e-7);
+    // Beyond the rim: the continuation into the other hemisphere, |st| > 1; the antipode is finite.
+    const vec2 beyond = rk_paraboloid_encode(vec3(1.0f, 0.0f, -0.1f), 1.0f);
+    EXPECT_GT(beyond.x, 1.0f);
+    const vec2 anti = rk_paraboloid_encode(vec3(0.0f, 0.0f, -1.0f), 1.0f);
+    EXPECT_TRUE(std::isfinite(anti.x) && std::isfinite(anti.y));
+    // Unnormalised input is normalised.
+    const vec2 big = rk_paraboloid_encode(vec3(3e30f, 4e30f, 0.0f), 1.0f);
+    EXPECT_NEAR(big.x, 0.6, 1e-7);
+    EXPECT_NEAR(big.y, 0.8, 1e-7);
+}
+
+TEST(Paraboloid, SolidAngleDensity)
+{
+    EXPECT_FLOAT_EQ(rk_paraboloid_solid_angle_density(vec2(0.0f)), 4.0f);
+    EXPECT_FLOAT_EQ(rk_paraboloid_solid_angle_density(vec2(1.0f, 0.0f)), 1.0f);
+    EXPECT_FLOAT_EQ(rk_paraboloid_solid_angle_density(vec2(0.0f)) /
+                        rk_paraboloid_solid_angle_density(vec2(std::sqrt(0.5f), std::sqrt(0.5f))),
+                    4.0f);
+    // Quadrature of the float function over the unit disk (polar midpoint rule): 2π.
+    double integral = 0.0;
+    const int nr = 4000, na = 64;
+    for (int i = 0; i < nr; ++i) {
+        const double r = (i + 0.5) / nr;
+        for (int k = 0; k < na; ++k) {
+            const double a = 2.0 * kPi * (k + 0.5) / na;
+            const vec2 st(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)));
+            integral += rk_paraboloid_solid_angle_density(st) * r * (1.0 / nr) * (2.0 * kPi / na);
+        }
+    }
+    std::printf("integral of the density over the unit disk: %.9f (2 pi = %.9f)\n", integral, 2.0 * kPi);
+    EXPECT_NEAR(integral, 2.0 * kPi, 1e-5);
+    // The density is the Jacobian of the decode: |d(dir)/ds x d(dir)/dt| by central differences.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+        const double s = u(rng) * 0.7, t = u(rng) * 0.7, e = 1e-3;
+        auto dec = [](double a, double b) {
+            const double q = 1.0 + a * a + b * b;
+            return D3{2 * a / q, 2 * b / q, (1 - a * a - b * b) / q};
+        };
+        const D3 ps = dec(s + e, t), ms = dec(s - e, t), pt = dec(s, t + e), mt = dec(s, t - e);
+        const D3 ds{(ps.x - ms.x) / (2 * e), (ps.y - ms.y) / (2 * e), (ps.z - ms.z) / (2 * e)};
+        const D3 dt{(pt.x - mt.x) / (2 * e), (pt.y - mt.y) / (2 * e), (pt.z - mt.z) / (2 * e)};
+        const double cx = ds.y * dt.z - ds.z * dt.y, cy = ds.z * dt.x - ds.x * dt.z, cz = ds.x * dt.y - ds.y * dt.x;
+        EXPECT_NEAR(rk_paraboloid_solid_angle_density(vec2(static_cast<float>(s), static_cast<float>(t))),
+                    std::sqrt(cx * cx + cy * cy + cz * cz), 2e-5);
+    }
+    // Discrete: the atlas's texel solid angles inside the disk of one half add up to 2π.
+    const int n = 512;
+    const float g = rk_dual_paraboloid_guard_scale(static_cast<float>(n), 0.5f);
+    double sum = 0.0;
+    const double texel_area = std::pow(2.0 / (g * n), 2.0);
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const vec2 st((2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(n) - 1.0f) / g,
+                          (2.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(n) - 1.0f) / g);
+            sum += rk_paraboloid_sweet_circle(st) * rk_paraboloid_solid_angle_density(st) * texel_area;
+        }
+    }
+    EXPECT_NEAR(sum, 2.0 * kPi, 2.0 * kPi * 2e-3);
+}
+
+TEST(Paraboloid, SweetCircleCoversPiOver4)
+{
+    const int n = 1024;
+    long inside = 0;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const vec2 st(2.0f * (static_cast<float>(i) + 0.5f) / n - 1.0f,
+                          2.0f * (static_cast<float>(j) + 0.5f) / n - 1.0f);
+            inside += rk_paraboloid_sweet_circle(st) > 0.5f ? 1 : 0;
+        }
+    }
+    EXPECT_NEAR(static_cast<double>(inside) / (n * n), kPi / 4.0, 2.0 / n);
+    EXPECT_EQ(rk_paraboloid_sweet_circle(vec2(1.0f, 0.0f)), 1.0f);
+    EXPECT_EQ(rk_paraboloid_sweet_circle(vec2(1.0001f, 0.0f)), 0.0f);
+    const vec2 uv = rk_paraboloid_uv(vec2(1.0f, -1.0f), 1.0f);
+    EXPECT_EQ(uv.x, 1.0f);
+    EXPECT_EQ(uv.y, 0.0f);
+}
+
+TEST(Paraboloid, EncodeDifferentialMatchesFiniteDifferences)
+{
+    DirGen gen(17);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (float hemi : {1.0f, -1.0f}) {
+        double worst = 0;
+        for (int i = 0; i < 2000; ++i) {
+            vec3 d = gen();
+            if (d.z * hemi < 0.0f) d.z = -d.z;
+            const double scale = std::exp2(u(rng) * 20.0);  // unnormalised v: the result is invariant
+            const vec3 v = d * static_cast<float>(scale);
+            const vec3 dv(static_cast<float>(u(rng) * scale), static_cast<float>(u(rng) * scale),
+                          static_cast<float>(u(rng) * scale));
+            const vec2 ds = rk_paraboloid_encode_differential(v, dv, hemi);
+            auto enc = [&](double e) {
+                const double x = v.x + e * dv.x, y = v.y + e * dv.y, z = v.z + e * dv.z;
+                const double l = std::sqrt(x * x + y * y + z * z);
+                return std::make_pair(x / (l + hemi * z), y / (l + hemi * z));
+            };
+            const double e = 1e-5;
+            const auto p = enc(e), m = enc(-e);
+            const double fx = (p.first - m.first) / (2 * e), fy = (p.second - m.second) / (2 * e);
+            const double err = std::hypot(ds.x - fx, ds.y - fy) / std::max(1.0, std::hypot(fx, fy));
+            worst = std::max(worst, err);
+        }
+        EXPECT_LT(worst, 2e-5) << hemi;
+    }
+    const vec2 z = rk_paraboloid_encode_differential(vec3(0.0f), vec3(1.0f), 1.0f);
+    EXPECT_EQ(z.x, 0.0f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Window frame (Eq. 3.11)
+
+TEST(Paraboloid, WindowFrameMatchesEq311)
+{
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> u(-kPi, kPi);
+    double worst_angle = 0, worst_map = 0, worst_frame = 0;
+    for (int i = 0; i < 10000; ++i) {
+        const double phi = u(rng);
+        const vec3 n(static_cast<float>(std::cos(phi)), 0.0f, static_cast<float>(std::sin(phi)));
+        // Eq. 3.11 literally, in float64 on the float normal normalised in float64 (arccos is
+        // ill-conditioned near ±1, so the float's non-unit length must not enter):
+        // θ = ±arccos(N·d0), minus when (N x d0)_y > 0, d0 = (0, 0, -1).
+        const double len = std::hypot(static_cast<double>(n.x), static_cast<double>(n.z));
+        const double nx = n.x / len, nz = n.z / len;
+        const double ndot = -nz;
+        const double cross_y = nz * 0.0 - nx * -1.0;  // (N x d0)_y = Nz d0x - Nx d0z
+        const double theta_ref = cross_y <= 0.0 ? std::acos(ndot) : -std::acos(ndot);
+        const float theta = rk_paraboloid_frame_angle(n);
+        double diff = std::abs(theta - theta_ref);
+        diff = std::min(diff, std::abs(diff - 2.0 * kPi));
+        worst_angle = std::max(worst_angle, diff);
+        // R_y(θ) d0 = N
+        const mat3 m = rk_paraboloid_frame_vertical(theta);
+        const vec3 mapped = m * vec3(0.0f, 0.0f, -1.0f);
+        worst_map = std::max(worst_map, dist(mapped, to_d(n)));
+        // The general basis reproduces R_y(θ) for vertical windows, up = +y, hemi = -1.
+        const mat3 g = rk_paraboloid_frame(n, vec3(0.0f, 1.0f, 0.0f), -1.0f);
+        for (int c = 0; c < 3; ++c) worst_frame = std::max(worst_frame, dist(g[c], to_d(m[c])));
+    }
+    std::printf("frame: |atan2 form - Eq. 3.11| %.3g rad, |R_y(theta) d0 - N| %.3g, |basis - R_y| %.3g\n", worst_angle,
+                worst_map, worst_frame);
+    EXPECT_LT(worst_angle, 1e-6);
+    EXPECT_LT(worst_map, 1e-6);
+    EXPECT_LT(worst_frame, 1e-6);
+    EXPECT_EQ(rk_paraboloid_frame_angle(vec3(0.0f, 1.0f, 0.0f)), 0.0f);  // horizontal window: no angle
+}
+
+TEST(Paraboloid, GeneralFrameIsOrthonormalAndMapsD0ToN)
+{
+    DirGen gen(21);
+    for (int i = 0; i < 20000; ++i) {
+        const vec3 n = i == 0 ? vec3(0.0f, 1.0f, 0.0f) : i == 1 ? vec3(0.0f, -1.0f, 0.0f) : gen();
+        for (float hemi : {1.0f, -1.0f}) {
+            const mat3 m = rk_paraboloid_frame(n, vec3(0.0f, 1.0f, 0.0f), hemi);
+            const vec3 d0 = m * vec3(0.0f, 0.0f, hemi);
+            ASSERT_LT(dist(d0, to_d(n)), 1e-6) << fmt(n.x, n.y, n.z);
+            for (int a = 0; a < 3; ++a) {
+                for (int b = 0; b < 3; ++b) ASSERT_NEAR(glm::dot(m[a], m[b]), a == b ? 1.0 : 0.0, 1e-6);
+            }
+            ASSERT_NEAR(glm::determinant(m), 1.0, 1e-6);  // right-handed
+            // A direction round-trips through local coordinates.
+            const vec3 w = gen();
+            ASSERT_LT(dist(m * (w * m), to_d(w)), 1e-6);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dual-paraboloid atlas and the guard band
+
+TEST(DualParaboloid, GuardScaleValues)
+{
+    EXPECT_FLOAT_EQ(rk_dual_paraboloid_guard_scale(256.0f, rk_paraboloid_filter_footprint(0.0f)), 1.0f - 1.0f / 256.0f);
+    EXPECT_FLOAT_EQ(rk_dual_paraboloid_guard_scale(256.0f, rk_paraboloid_filter_footprint(3.0f)), 0.96875f);
+    EXPECT_FLOAT_EQ(rk_paraboloid_filter_footprint(2.5f), 4.0f);
+    EXPECT_FLOAT_EQ(rk_dual_paraboloid_guard_scale(4.0f, 100.0f), RK_PARABOLOID_GUARD_MIN);
+}
+
+TEST(DualParaboloid, UvRoundTripAndHalves)
+{
+    DirGen gen(31);
+    const float g = rk_dual_paraboloid_guard_scale(128.0f, 2.0f);
+    ErrorStats rt;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 d = gen();
+        const vec2 uv = rk_dual_paraboloid_uv(d, g);
+        if (d.z >= 0.0f) {
+            ASSERT_LT(uv.x, 0.5f);
+        } else {
+            ASSERT_GT(uv.x, 0.5f);
+        }
+        rt.add(dist(rk_dual_paraboloid_dir(uv, g), to_d(d)), 0.0, fmt(d.x, d.y, d.z));
+    }
+    std::printf("atlas uv -> dir round trip: %s\n", rt.str().c_str());
+    EXPECT_LT(rt.max_abs, 2e-6);
+    // -0 and +0 z both use the left half.
+    EXPECT_LT(rk_dual_paraboloid_uv(vec3(1.0f, 0.0f, -0.0f), g).x, 0.5f);
+    // Guard band texels hold the continuation of the projection: past the rim, other hemisphere.
+    const vec3 guard = rk_dual_paraboloid_dir(vec2(0.2499f * (1.0f + 1.0f / g) + 0.0001f, 0.5f), g);
+    EXPECT_LT(guard.z, 0.0f);
+}
+
+namespace {
+/// Whether every bilinear tap of a lookup at uv, on every level up to ceil(max_lod), lies in the
+/// half the lookup belongs to (no clamping needed either).
+bool taps_inside_half(vec2 uv, bool left, int half_size, float max_lod)
+{
+    const int top = static_cast<int>(std::ceil(max_lod));
+    for (int l = 0; l <= top; ++l) {
+        const int h = half_size >> l;
+        const double x = static_cast<double>(uv.x) * 2.0 * h - 0.5, y = static_cast<double>(uv.y) * h - 0.5;
+        const long x0 = static_cast<long>(std::floor(x)), y0 = static_cast<long>(std::floor(y));
+        const long lo = left ? 0 : h, hi = left ? h - 1 : 2 * h - 1;
+        // A tap of zero weight (x exactly on a centre) may fall outside; it reads nothing.
+        const bool xw = x - static_cast<double>(x0) > 0.0;
+        const bool yw = y - static_cast<double>(y0) > 0.0;
+        if (x0 < lo || (xw ? x0 + 1 : x0) > hi) return false;
+        if (y0 < 0 || (yw ? y0 + 1 : y0) > h - 1) return false;
+    }
+    return true;
+}
+}  // namespace
+
+TEST(DualParaboloid, GuardKeepsEveryTapInItsHalf)
+{
+    DirGen gen(41);
+    std::vector<vec3> dirs;
+    for (int i = 0; i < 20000; ++i) dirs.push_back(gen());
+    for (int i = 0; i < 3600; ++i) {  // the seam itself, both signs of zero, and just off it
+        const double a = 2.0 * kPi * i / 3600.0;
+        const float c = static_cast<float>(std::cos(a)), s = static_cast<float>(std::sin(a));
+        dirs.push_back(vec3(c, s, 0.0f));
+        dirs.push_back(vec3(c, s, -0.0f));
+        dirs.push_back(vec3(c, s, 1e-7f));
+        dirs.push_back(vec3(c, s, -1e-7f));
+    }
+    for (int half : {16, 64, 256, 1024}) {
+        for (float max_lod : {0.0f, 1.0f, 2.5f, 3.0f}) {
+            const float g =
+                rk_dual_paraboloid_guard_scale(static_cast<float>(half), rk_paraboloid_filter_footprint(max_lod));
+            long bad = 0;
+            for (const vec3& d : dirs)
+                bad += taps_inside_half(rk_dual_paraboloid_uv(d, g), rk_dual_paraboloid_hemi(d) > 0.0f, half, max_lod)
+                           ? 0
+                           : 1;
+            EXPECT_EQ(bad, 0) << "half " << half << " max_lod " << max_lod << " g " << g;
+            // The guard is tight: the next larger scale (one more level-0 texel of radius) fails.
+            const float g_loose = rk_dual_paraboloid_guard_scale(static_cast<float>(half),
+                                                                 rk_paraboloid_filter_footprint(max_lod) - 0.25f);
+            long bad_loose = 0;
+            for (const vec3& d : dirs)
+                bad_loose += taps_inside_half(rk_dual_paraboloid_uv(d, g_loose), rk_dual_paraboloid_hemi(d) > 0.0f,
+                                              half, max_lod)
+                                 ? 0
+                                 : 1;
+            EXPECT_GT(bad_loose, 0) << "half " << half << " max_lod " << max_lod;
+        }
+    }
+    // Torque3D's 0.997 is right for one size only: too small a guard at 256 texels with mips.
+    long bad_torque = 0;
+    for (const vec3& d : dirs)
+        bad_torque +=
+            taps_inside_half(rk_dual_paraboloid_uv(d, 0.997f), rk_dual_paraboloid_hemi(d) > 0.0f, 256, 2.0f) ? 0 : 1;
+    EXPECT_GT(bad_torque, 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Baking
+
+TEST(Bake, SelfDirectionCubeConvertsToSelfDirectionParaboloid)
+{
+    // A cube map whose texels hold their own centre direction.
+    const int f = 64;
+    const EnvCubeMap cube = bake_cube_map(f, identity_env, 1);
+    for (int face = 0; face < 6; ++face) {
+        EXPECT_LT(dist(cube.faces[static_cast<size_t>(face)].texel(5, 9), to_d(cube_texel_direction(face, 5, 9, f))),
+                  1e-6);
+    }
+    DualParaboloidBakeOptions o;
+    o.half_size = 64;
+    o.max_lod = 2.0f;
+    const DualParaboloidMap map = bake_dual_paraboloid(cube, o);
+    ASSERT_EQ(map.levels.size(), 3u);
+    EXPECT_EQ(map.levels[0].width, 128);
+    EXPECT_EQ(map.levels[2].width, 32);
+    double worst = 0, worst_rel = 0;
+    for (int j = 0; j < map.levels[0].height; ++j) {
+        for (int i = 0; i < map.levels[0].width; ++i) {
+            const vec2 uv((static_cast<float>(i) + 0.5f) / 128.0f, (static_cast<float>(j) + 0.5f) / 64.0f);
+            const vec3 want = rk_dual_paraboloid_dir(uv, map.guard_scale);
+            const double err = angle_between(map.levels[0].texel(i, j), want);
+            const float st_r =
+                std::hypot(2.0f * (uv.x * 2.0f - (uv.x < 0.5f ? 0.0f : 1.0f)) - 1.0f, 2.0f * uv.y - 1.0f) /
+                map.guard_scale;
+            const double texel = rk_paraboloid_texel_angle(vec2(st_r, 0.0f), 64.0f, map.guard_scale);
+            worst = std::max(worst, err);
+            worst_rel = std::max(worst_rel, err / texel);
+        }
+    }
+    std::printf("self-direction cube (64) -> dual paraboloid (2 x 64^2): max angle error %.3g rad = %.3g texels\n",
+                worst, worst_rel);
+    EXPECT_LT(worst_rel, 0.1);  // a tenth of a texel, guard band included (the box filter's bias)
+    EnvImage mip1 = downsample_box(map.levels[0]);
+    EXPECT_EQ(mip1.rgb, map.levels[1].rgb);
+    // And back: paraboloid -> cube, texels decode to their own direction.
+    const EnvCubeMap back = cube_from_dual_paraboloid(map, 32, 2);
+    double worst_back = 0;
+    for (int face = 0; face < 6; ++face) {
+        for (int j = 0; j < 32; ++j) {
+            for (int i = 0; i < 32; ++i) {
+                worst_back = std::max(worst_back, angle_between(back.faces[static_cast<size_t>(face)].texel(i, j),
+                                                                cube_texel_direction(face, i, j, 32)));
+            }
+        }
+    }
+    std::printf("dual paraboloid -> cube (32): max angle error %.3g rad (cube texel %.3g rad)\n", worst_back,
+                2.0 / 32.0);
+    EXPECT_LT(worst_back, 0.05 * (2.0 / 32.0));
+}
+
+TEST(Bake, WindowFrameMapsAndSingleParaboloid)
+{
+    // The thesis's per-window map: a single paraboloid (d0 = -z) in the window's frame, whose centre
+    // looks along the window normal; and a dual atlas baked in the same frame.
+    const EnvCubeMap cube = bake_cube_map(48, identity_env, 1);
+    const vec3 n = glm::normalize(vec3(0.6f, 0.0f, -0.8f));
+    const mat3 frame = rk_paraboloid_frame(n, vec3(0.0f, 1.0f, 0.0f), -1.0f);
+    const EnvImage single = bake_paraboloid(cube, 64, frame, -1.0f);
+    DirGen gen(81);
+    double worst = 0, worst_dual = 0;
+    DualParaboloidBakeOptions o;
+    o.half_size = 64;
+    o.frame = frame;
+    const DualParaboloidMap dual = bake_dual_paraboloid(cube, o);
+    for (int i = 0; i < 20000; ++i) {
+        vec3 w = gen();
+        if (glm::dot(w, n) < 0.05f) w = glm::reflect(w, n);  // the half-space the window reflects
+        if (glm::dot(w, n) < 0.05f) continue;
+        const vec3 local = w * frame;  // world -> window frame
+        worst = std::max(worst, angle_between(sample_paraboloid(single, local, -1.0f), w));
+        worst_dual = std::max(worst_dual, angle_between(sample_dual_paraboloid(dual, local), w));
+    }
+    const vec3 centre = glm::mix(single.texel(31, 31), single.texel(32, 32), 0.5f);
+    std::printf(
+        "window-frame maps, self-direction content: single paraboloid max angle error %.3g rad, dual %.3g rad; "
+        "centre %.3g rad from N\n",
+        worst, worst_dual, angle_between(centre, n));
+    EXPECT_LT(angle_between(centre, n), 0.01);
+    EXPECT_LT(worst, 0.01);
+    EXPECT_LT(worst_dual, 0.01);
+}
+
+TEST(Bake, MipsAreBoxFiltersAndNeverMixHalves)
+{
+    DualParaboloidBakeOptions o;
+    o.half_size = 32;
+    o.max_lod = 3.0f;
+    o.supersample = 2;
+    // Left half +1 everywhere (guard band included), right half -1: a mip texel that mixed the
+    // halves would hold something else.
+    EnvImage base(2 * o.half_size, o.half_size);
+    for (int j = 0; j < base.height; ++j) {
+        for (int i = 0; i < base.width; ++i) base.set(i, j, vec3(i < o.half_size ? 1.0f : -1.0f));
+    }
+    const std::vector<EnvImage> mips = generate_env_mips(base, 4);
+    for (size_t l = 1; l < mips.size(); ++l) {
+        const int h = o.half_size >> l;
+        for (int j = 0; j < h; ++j) {
+            for (int i = 0; i < 2 * h; ++i) ASSERT_EQ(mips[l].texel(i, j).x, i < h ? 1.0f : -1.0f);
+        }
+    }
+    EXPECT_THROW(downsample_box(EnvImage(3, 2)), std::invalid_argument);
+    o.half_size = 36;  // not a multiple of 2^3
+    EXPECT_THROW(bake_dual_paraboloid_fn(identity_env, o), std::invalid_argument);
+    o.half_size = 8;  // guard would eat the map
+    EXPECT_THROW(bake_dual_paraboloid_fn(identity_env, o), std::invalid_argument);
+}
+
+TEST(Bake, SeamIsContinuous)
+{
+    // Lookups of a dual-paraboloid map baked from a self-direction cube: the angle error next to the
+    // seam (|z| within two rim texels) is no larger than elsewhere, at every LOD the guard covers.
+    const EnvCubeMap cube = bake_cube_map(96, identity_env, 1);
+    DualParaboloidBakeOptions o;
+    o.half_size = 64;
+    o.max_lod = 2.0f;
+    const DualParaboloidMap map = bake_dual_paraboloid(cube, o);
+    DirGen gen(51);
+    for (float lod : {0.0f, 1.0f, 2.0f}) {
+        const double rim_texel = rk_paraboloid_texel_angle(vec2(1.0f, 0.0f), 64.0f, map.guard_scale) * std::exp2(lod);
+        double seam_max = 0, else_max = 0, seam_sum = 0, else_sum = 0, jump_max = 0;
+        long seam_n = 0, else_n = 0;
+        for (int i = 0; i < 200000; ++i) {
+            vec3 d = gen();
+            if (i % 2 == 0) {  // half the samples in the seam band
+                d.z = static_cast<float>((d.z) * 2.0 * rim_texel);
+                d = glm::normalize(d);
+            }
+            const double e = angle_between(sample_dual_paraboloid(map, d, lod), d);
+            if (std::abs(d.z) < 2.0 * rim_texel) {
+                seam_max = std::max(seam_max, e);
+                seam_sum += e;
+                ++seam_n;
+                // The two halves agree across the seam.
+                const vec3 above(d.x, d.y, 1e-6f), below(d.x, d.y, -1e-6f);
+                jump_max = std::max(jump_max, angle_between(sample_dual_paraboloid(map, above, lod),
+                                                            sample_dual_paraboloid(map, below, lod)));
+            } else {
+                else_max = std::max(else_max, e);
+                else_sum += e;
+                ++else_n;
+            }
+        }
+        std::printf(
+            "lod %.0f: angle error next to the seam max %.3g mean %.3g; elsewhere max %.3g mean %.3g; "
+            "jump across the seam %.3g (rim texel %.3g rad)\n",
+            static_cast<double>(lod), seam_max, seam_sum / static_cast<double>(seam_n), else_max,
+            else_sum / static_cast<double>(else_n), jump_max, rim_texel);
+        EXPECT_LE(seam_max, else_max);
+        EXPECT_LE(seam_sum / static_cast<double>(seam_n), else_sum / static_cast<double>(else_n));
+        EXPECT_LT(jump_max, 0.05 * rim_texel);
+    }
+    // Without the guard (g = 1, the rim touching the half's edge) the seam leaks: the lookup at the
+    // rim reads the other half's texels (Torque3D #2303's light leak).
+    DualParaboloidMap plain = map;
+    plain.guard_scale = 1.0f;
+    plain.max_lod = 0.0f;
+    EnvImage base(128, 64);  // texel-centre directions for g = 1 (what a g = 1 bake converges to)
+    for (int j = 0; j < 64; ++j) {
+        for (int i = 0; i < 128; ++i) {
+            const vec2 uv((static_cast<float>(i) + 0.5f) / 128.0f, (static_cast<float>(j) + 0.5f) / 64.0f);
+            base.set(i, j, rk_dual_paraboloid_dir(uv, 1.0f));
+        }
+    }
+    plain.levels = {base};
+    double leak = 0;
+    for (int i = 0; i < 3600; ++i) {
+        const double a = 2.0 * kPi * i / 3600.0;
+        const vec3 d(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0.0f);
+        leak = std::max(leak, angle_between(sample_dual_paraboloid(plain, d, 0.0f), d));
+    }
+    std::printf("without the guard band (g = 1): max angle error on the seam %.3g rad\n", leak);
+    EXPECT_GT(leak, 0.5);
+}
+
+// ---------------------------------------------------------------------------------------------
+// LOD selection and the Brabec projection
+
+TEST(Paraboloid, LodSelection)
+{
+    EXPECT_EQ(rk_paraboloid_lod_from_incidence(1.0f, 4.0f), 0.0f);
+    EXPECT_EQ(rk_paraboloid_lod_from_incidence(0.0f, 4.0f), 4.0f);
+    float prev = -1.0f;
+    for (int i = 100; i >= 0; --i) {  // grows monotonically with the angle of incidence
+        const float l = rk_paraboloid_lod_from_incidence(static_cast<float>(i) / 100.0f, 3.0f);
+        EXPECT_GE(l, prev);
+        prev = l;
+    }
+    // The texel angle matches the angle between the directions of neighbouring texel centres.
+    const float g = 0.96875f;
+    const int half = 256;
+    for (float r : {0.0f, 0.5f, 0.9f}) {
+        const vec3 a = rk_paraboloid_decode(vec2(r, 0.0f), 1.0f);
+        const vec3 b = rk_paraboloid_decode(vec2(r + 2.0f / (g * half), 0.0f), 1.0f);
+        EXPECT_NEAR(angle_between(a, b) / rk_paraboloid_texel_angle(vec2(r + 1.0f / (g * half), 0.0f), half, g), 1.0,
+                    1e-3)
+            << r;
+    }
+    const vec2 st(0.3f, 0.4f);
+    const float ta = rk_paraboloid_texel_angle(st, 256.0f, g);
+    EXPECT_NEAR(rk_paraboloid_lod_for_cone(st, ta, 256.0f, g, 8.0f), 0.0, 1e-5);
+    EXPECT_NEAR(rk_paraboloid_lod_for_cone(st, 4.0f * ta, 256.0f, g, 8.0f), 2.0, 1e-5);
+    EXPECT_EQ(rk_paraboloid_lod_for_cone(st, 1e6f * ta, 256.0f, g, 3.0f), 3.0f);
+    EXPECT_EQ(rk_paraboloid_lod_for_cone(st, 0.0f, 256.0f, g, 3.0f), 0.0f);
+}
+
+TEST(Paraboloid, BrabecProjection)
+{
+    DirGen gen(61);
+    const float g = 0.98f, zn = 0.5f, zf = 100.0f;
+    for (int i = 0; i < 10000; ++i) {
+        const float hemi = i % 2 ? 1.0f : -1.0f;
+        vec3 d = gen();
+        if (d.z * hemi < 0.0f) d.z = -d.z;
+        const float r = 0.5f + 99.5f * static_cast<float>(i) / 10000.0f;
+        const vec3 p = d * r;
+        const vec4 c = rk_paraboloid_project(p, zn, zf, hemi, g);
+        const vec2 st = rk_paraboloid_encode(d, hemi);
+        ASSERT_NEAR(c.x, g * st.x, 1e-6);
+        ASSERT_NEAR(c.y, g * st.y, 1e-6);
+        ASSERT_NEAR(c.z, 2.0 * (r - zn) / (zf - zn) - 1.0, 2e-6);
+        ASSERT_EQ(c.w, 1.0f);
+        ASSERT_NEAR(rk_paraboloid_depth_decode(rk_paraboloid_depth_encode(r, zn, zf), zn, zf), r, 2e-5);
+        ASSERT_GE(rk_paraboloid_clip_distance(p, hemi, g), 0.0f);
+        ASSERT_LT(rk_paraboloid_clip_distance(vec3(p.x, p.y, -p.z) + vec3(0.0f, 0.0f, -hemi * r * 0.2f), hemi, g),
+                  0.0f);
+    }
+    // The clip cone passes through the edge of the half: |st| = 1 / g.
+    const vec3 edge = rk_paraboloid_decode(vec2(1.0f / g, 0.0f), 1.0f);
+    EXPECT_NEAR(rk_paraboloid_clip_distance(edge * 10.0f, 1.0f, g), 0.0, 1e-5);
+    EXPECT_NEAR(rk_paraboloid_clip_distance(vec3(1.0f, 0.0f, 0.0f), 1.0f, 1.0f), 0.0, 0.0);  // g = 1: the plane z = 0
+    EXPECT_EQ(rk_paraboloid_project(vec3(0.0f), zn, zf, 1.0f, g).z, -2.0f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Totality: every shared function, adversarial inputs, finite outputs.
+
+TEST(Paraboloid, FiniteForEveryFiniteInput)
+{
+    const float adv[] = {0.0f,  -0.0f,  1e-45f, -1e-45f, 1e-40f,        1.17549435e-38f,
+                         1.0f,  -1.0f,  0.5f,   2.0f,    1e-20f,        -1e-20f,
+                         1e20f, -1e20f, 1e30f,  -1e30f,  3.4028235e38f, -3.4028235e38f};
+    auto finite2 = [](vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
+    auto finite3 = [](vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    long checked = 0;
+    for (float a : adv) {
+        for (float b : adv) {
+            for (float c : adv) {
+                const vec3 v(a, b, c);
+                for (float h : {1.0f, -1.0f, 0.0f, -0.0f}) {
+                    ASSERT_TRUE(finite2(rk_paraboloid_encode(v, h))) << fmt(a, b, c, h);
+                    ASSERT_TRUE(finite3(rk_paraboloid_decode(vec2(a, b), h))) << fmt(a, b, h);
+                    ASSERT_TRUE(finite2(rk_paraboloid_encode_differential(v, vec3(c, a, b), h))) << fmt(a, b, c, h);
+                    const mat3 m = rk_paraboloid_frame(v, vec3(c, b, a), h);
+                    ASSERT_TRUE(finite3(m[0]) && finite3(m[1]) && finite3(m[2])) << fmt(a, b, c, h);
+                    ASSERT_TRUE(std::isfinite(rk_paraboloid_clip_distance(v, h, a)));
+                    const vec4 p = rk_paraboloid_project(v, a, b, h, c);
+                    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << fmt(a, b, c, h);
+                }
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_frame_angle(v)));
+                ASSERT_TRUE(finite2(rk_dual_paraboloid_uv(v, a)));
+                ASSERT_TRUE(finite2(rk_dual_paraboloid_uv_differential(v, vec3(b, c, a), c)));
+                ASSERT_TRUE(finite3(rk_dual_paraboloid_dir(vec2(a, b), c)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_solid_angle_density(vec2(a, b))));
+                ASSERT_TRUE(finite2(rk_paraboloid_uv(vec2(a, b), c)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_texel_angle(vec2(a, b), c, a)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_lod_for_cone(vec2(a, b), c, a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_lod_from_incidence(a, b)));
+                ASSERT_TRUE(std::isfinite(rk_dual_paraboloid_guard_scale(a, b)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_filter_footprint(a)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_depth_encode(a, b, c)));
+                ASSERT_TRUE(std::isfinite(rk_paraboloid_depth_decode(a, b, c)));
+                const mat3 mv = rk_paraboloid_frame_vertical(rk_paraboloid_frame_angle(v));
+                ASSERT_TRUE(finite3(mv[0]) && finite3(mv[2]));
+                const vec3 nrm = rk_paraboloid_normalize(v, vec3(0.0f, 0.0f, 1.0f));
+                ASSERT_TRUE(finite3(nrm));
+                ASSERT_NEAR(glm::length(nrm), 1.0, 1e-6) << fmt(a, b, c);
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 5000);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 5 item 6: accuracy at equal texel budgets (dual paraboloid vs octahedral vs cube).
+
+namespace {
+struct Timed {
+    ColourError err;
+    double ns_per_lookup = 0;
+};
+
+template <class Lookup, class Truth>
+Timed measure(const std::vector<vec3>& dirs, Lookup&& lookup, Truth&& truth)
+{
+    Timed t;
+    std::vector<vec3> got(dirs.size());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < dirs.size(); ++i) got[i] = lookup(dirs[i]);
+    const auto t1 = std::chrono::steady_clock::now();
+    t.ns_per_lookup = std::chrono::duration<double, std::nano>(t1 - t0).count() / static_cast<double>(dirs.size());
+    for (size_t i = 0; i < dirs.size(); ++i) t.err.add(got[i], truth(dirs[i]));
+    return t;
+}
+}  // namespace
+
+TEST(Accuracy, EqualTexelBudgetsDualParaboloidVsOctahedral)
+{
+    DirGen gen(71);
+    std::vector<vec3> dirs(200000);
+    for (vec3& d : dirs) d = gen();
+    std::printf(
+        "\n== Issue 5 item 6: lookups over %zu random directions, bilinear on the CPU, RGB in [0, 1], "
+        "PSNR for peak 1 ==\n",
+        dirs.size());
+    for (int f : {64, 128}) {
+        const int h = static_cast<int>(std::lround(f * std::sqrt(3.0)));  // 2 h^2 ~ 6 f^2
+        const int m = static_cast<int>(std::lround(f * std::sqrt(6.0)));  // m^2 ~ 6 f^2
+        const long cube_texels = 6L * f * f, dp_texels = 2L * h * h, oct_texels = 1L * m * m;
+        const EnvCubeMap cube = bake_cube_map(f, city_env, 4);
+        DualParaboloidBakeOptions o;
+        o.half_size = h;
+        const DualParaboloidMap dp = bake_dual_paraboloid(cube, o);
+        const OctahedralMap oct = bake_octahedral(cube, m);
+        auto cube_lookup = [&](vec3 d) { return sample_cube_map(cube, d); };
+        auto dp_lookup = [&](vec3 d) { return sample_dual_paraboloid(dp, d); };
+        auto oct_lookup = [&](vec3 d) { return sample_octahedral(oct, d); };
+        const Timed tc = measure(dirs, cube_lookup, city_env);
+        const Timed td = measure(dirs, dp_lookup, cube_lookup);
+        const Timed to = measure(dirs, oct_lookup, cube_lookup);
+        std::printf(
+            "source cube %dx%dx6 (%ld texels); resampled at equal budget, error against the source cube's lookups:\n",
+            f, f, cube_texels);
+        std::printf("  %-34s texels %7ld  PSNR %6.2f dB  max abs %.4f  CPU %.1f ns/lookup\n",
+                    fmt("dual paraboloid 2x", h, "x", h, "g", dp.guard_scale).c_str(), dp_texels, td.err.psnr(),
+                    td.err.max_abs, td.ns_per_lookup);
+        std::printf("  %-34s texels %7ld  PSNR %6.2f dB  max abs %.4f  CPU %.1f ns/lookup\n",
+                    fmt("octahedral", m, "x", m).c_str(), oct_texels, to.err.psnr(), to.err.max_abs, to.ns_per_lookup);
+        std::printf(
+            "  %-34s texels %7ld  (cube vs the analytic scene: PSNR %.2f dB, max abs %.4f, CPU %.1f ns/lookup)\n",
+            "cube (reference)", cube_texels, tc.err.psnr(), tc.err.max_abs, tc.ns_per_lookup);
+        // Each baked straight from the analytic scene at the same budget: the parameterisations
+        // themselves, against the scene.
+        const DualParaboloidMap dp_a = bake_dual_paraboloid_fn(city_env, o);
+        const OctahedralMap oct_a = bake_octahedral_fn(m, city_env, 4);
+        const Timed tda = measure(
+            dirs, [&](vec3 d) { return sample_dual_paraboloid(dp_a, d); }, city_env);
+        const Timed toa = measure(
+            dirs, [&](vec3 d) { return sample_octahedral(oct_a, d); }, city_env);
+        std::printf("baked from the analytic scene (4x4 supersampled), error against the scene:\n");
+        std::printf("  %-34s texels %7ld  PSNR %6.2f dB  max abs %.4f\n", "cube", cube_texels, tc.err.psnr(),
+                    tc.err.max_abs);
+        std::printf("  %-34s texels %7ld  PSNR %6.2f dB  max abs %.4f\n", "dual paraboloid", dp_texels, tda.err.psnr(),
+                    tda.err.max_abs);
+        std::printf("  %-34s texels %7ld  PSNR %6.2f dB  max abs %.4f\n", "octahedral", oct_texels, toa.err.psnr(),
+                    toa.err.max_abs);
+        // Sanity bounds (the numbers themselves go to docs/benchmarks.md).
+        EXPECT_GT(td.err.psnr(), 30.0);
+        EXPECT_GT(to.err.psnr(), 30.0);
+        EXPECT_GT(tda.err.psnr(), 30.0);
+        EXPECT_NEAR(static_cast<double>(dp_texels) / static_cast<double>(cube_texels), 1.0, 0.01);
+        EXPECT_NEAR(static_cast<double>(oct_texels) / static_cast<double>(cube_texels), 1.0, 0.01);
+    }
+}
