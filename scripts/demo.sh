@@ -4,7 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build --target fresnel_curves -j"$(nproc)"
+cmake --build build --target fresnel_curves tonemap_gallery -j"$(nproc)"
 mkdir -p out
 ./build/samples/fresnel_curves out/fresnel_curves.png
+./build/samples/tonemap_gallery out/tonemap_gallery.png
 echo "demo: wrote $(ls out/*.png | tr '\n' ' ')"

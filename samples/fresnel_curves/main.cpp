@@ -3,8 +3,8 @@
 //
 // Every curve is computed per pixel by raykit's GLSL (shaders/raykit/fresnel.glsl) in
 // fresnel_curves.frag, which draws them as anti-aliased lines over a grid. The text (title, tick
-// labels, legend) comes from stb_easy_font, which turns strings into quads on the CPU; they are
-// drawn in a second pass with a trivial shader. The few numbers printed in the labels (critical
+// labels, legend) comes from stb_easy_font through samples/common/rk_text.hpp, which turns strings
+// into quads on the CPU and draws them in a second, blended pass with a trivial shader. The few numbers printed in the labels (critical
 // and Brewster angles) come from the C++ build of the same fresnel.glsl.
 //
 // Usage: fresnel_curves [out.png]   (default fresnel_curves.png)
@@ -24,6 +24,7 @@
 #include "raykit/fresnel.hpp"
 #include "raykit/shader_source.hpp"
 #include "rk_gl.hpp"
+#include "rk_text.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -35,7 +36,6 @@
 #pragma GCC diagnostic ignored "-Wcast-qual"
 #pragma GCC diagnostic ignored "-Wpedantic"
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_easy_font.h>
 #include <stb_image_write.h>
 #pragma GCC diagnostic pop
 
@@ -53,15 +53,9 @@ constexpr float kDataRight = kDataLeft + 1080.0f;
 constexpr float kDataBottom = kDataTop + 600.0f;
 constexpr float kFramePad = 10.0f;
 
-struct Rgba {
-    unsigned char r, g, b, a;
-};
+using rkgl::Rgba;
 
-Rgba rgb(float r, float g, float b, float a = 1.0f)
-{
-    auto u8 = [](float v) { return static_cast<unsigned char>(std::lround(glm::clamp(v, 0.0f, 1.0f) * 255.0f)); };
-    return {u8(r), u8(g), u8(b), u8(a)};
-}
+Rgba rgb(float r, float g, float b, float a = 1.0f) { return rkgl::rgba(r, g, b, a); }
 
 struct Curve {
     const char* label;
@@ -82,93 +76,8 @@ const Curve kCurves[8] = {
     {"internal, glass -> air", "rk_fresnel_dielectric, eta = 1/1.52", 1.00f, 0.36f, 0.30f, 2.5f},
 };
 
-// A vertex of the overlay pass: pixel position and colour.
-struct Vertex {
-    float x, y;
-    Rgba c;
-};
-
-// The overlay: solid rectangles and stb_easy_font text, as triangles.
-class Overlay {
-public:
-    void rect(float x0, float y0, float x1, float y1, Rgba c)
-    {
-        const Vertex a{x0, y0, c}, b{x1, y0, c}, d{x1, y1, c}, e{x0, y1, c};
-        verts_.insert(verts_.end(), {a, b, d, a, d, e});
-    }
-
-    /// Text with its top-left at (x, y), glyph pixels scaled by `scale` (integer keeps it crisp).
-    /// `vertical` writes it bottom to top, (x, y) then being its bottom-left. A "\u00b0" (UTF-8
-    /// degree sign, which stb_easy_font lacks) is drawn as a small ring.
-    void text(float x, float y, const std::string& s, float scale, Rgba c, bool vertical = false)
-    {
-        static const std::string kDegree = "\xc2\xb0";
-        float cursor = 0.0f;  // font units along the text
-        size_t start = 0;
-        while (start <= s.size()) {
-            const size_t deg = s.find(kDegree, start);
-            const std::string piece = s.substr(start, deg == std::string::npos ? std::string::npos : deg - start);
-            glyphs(x, y, cursor, piece, scale, c, vertical);
-            cursor += width(piece, 1.0f);
-            if (deg == std::string::npos) break;
-            // A 3 x 3 ring at the cap height: four one-unit bars around a one-unit hole.
-            const float bars[4][4] = {{0, 0, 3, 1}, {0, 2, 3, 3}, {0, 1, 1, 2}, {2, 1, 3, 2}};
-            for (const auto& b : bars) {
-                quad(x, y, cursor + b[0], b[1], cursor + b[2], b[3], scale, c, vertical);
-            }
-            cursor += 4.0f;
-            start = deg + kDegree.size();
-        }
-    }
-
-    /// Advance width of text() in pixels.
-    static float width(const std::string& s, float scale)
-    {
-        static const std::string kDegree = "\xc2\xb0";
-        const size_t deg = s.find(kDegree);
-        if (deg != std::string::npos) {
-            return width(s.substr(0, deg), scale) + 4.0f * scale + width(s.substr(deg + kDegree.size()), scale);
-        }
-        std::vector<char> str(s.begin(), s.end());
-        str.push_back('\0');
-        return static_cast<float>(stb_easy_font_width(str.data())) * scale;
-    }
-
-    const std::vector<Vertex>& vertices() const { return verts_; }
-
-private:
-    // A quad given in font units (u along the text, w down), placed like text().
-    void quad(float x, float y, float u0, float w0, float u1, float w1, float scale, Rgba c, bool vertical)
-    {
-        Vertex v[4];
-        const float us[4] = {u0, u1, u1, u0};
-        const float ws[4] = {w0, w0, w1, w1};
-        for (int k = 0; k < 4; ++k) {
-            const float u = us[k] * scale;
-            const float w = ws[k] * scale;
-            v[k] = vertical ? Vertex{x + w, y - u, c} : Vertex{x + u, y + w, c};
-        }
-        verts_.insert(verts_.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
-    }
-
-    void glyphs(float x, float y, float cursor, const std::string& s, float scale, Rgba c, bool vertical)
-    {
-        std::vector<char> str(s.begin(), s.end());
-        str.push_back('\0');
-        std::vector<char> buf(s.size() * 1024 + 64);  // stb_easy_font truncates silently when short
-        unsigned char col[4] = {c.r, c.g, c.b, c.a};
-        const int quads = stb_easy_font_print(cursor, 0.0f, str.data(), col, buf.data(), static_cast<int>(buf.size()));
-        for (int q = 0; q < quads; ++q) {
-            float p[4][2];
-            for (int k = 0; k < 4; ++k) {
-                std::memcpy(p[k], &buf[static_cast<size_t>(q * 4 + k) * 16u], sizeof p[k]);
-            }
-            quad(x, y, p[0][0], p[0][1], p[2][0], p[2][1], scale, c, vertical);
-        }
-    }
-
-    std::vector<Vertex> verts_;
-};
+// The overlay: legend boxes and text, drawn in one blended pass by rk_text.hpp.
+using Overlay = rkgl::TextOverlay;
 
 const char* kFullscreenVert = R"(#version 450 core
 // A triangle covering the viewport, from gl_VertexID alone (no vertex buffer).
@@ -177,24 +86,6 @@ void main()
     vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
     gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
 }
-)";
-
-const char* kOverlayVert = R"(#version 450 core
-layout(location = 0) in vec2 a_pos;    // pixels, origin top-left
-layout(location = 1) in vec4 a_color;
-uniform vec2 u_size;
-out vec4 v_color;
-void main()
-{
-    v_color = a_color;
-    gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0);
-}
-)";
-
-const char* kOverlayFrag = R"(#version 450 core
-in vec4 v_color;
-out vec4 frag_color;
-void main() { frag_color = v_color; }
 )";
 
 std::string fmt(const char* format, double v)
@@ -322,7 +213,6 @@ int run(const char* out_path)
     const std::string frag_path = std::string(SAMPLES_DIR) + "/fresnel_curves/fresnel_curves.frag";
     const GLuint plot = rkgl::build_program({{GL_VERTEX_SHADER, kFullscreenVert},
                                              {GL_FRAGMENT_SHADER, raykit::load_shader_file(frag_path, {RAYKIT_SHADER_DIR})}});
-    const GLuint overlay = rkgl::build_program({{GL_VERTEX_SHADER, kOverlayVert}, {GL_FRAGMENT_SHADER, kOverlayFrag}});
 
     rkgl::Framebuffer fb(kWidth, kHeight);
     GLuint vao = 0;
@@ -351,29 +241,13 @@ int run(const char* out_path)
     // Pass 2: legend and text, alpha blended.
     Overlay o;
     build_overlay(o, renderer);
-    const std::vector<Vertex>& verts = o.vertices();
-    GLuint vbo = rkgl::make_buffer(verts.size() * sizeof(Vertex), verts.data());
-    glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, x));
-    glVertexArrayAttribBinding(vao, 0, 0);
-    glEnableVertexArrayAttrib(vao, 1);
-    glVertexArrayAttribFormat(vao, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Vertex, c));
-    glVertexArrayAttribBinding(vao, 1, 0);
-    glUseProgram(overlay);
-    glUniform2f(glGetUniformLocation(overlay, "u_size"), float(kWidth), float(kHeight));
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(verts.size()));
-    glDisable(GL_BLEND);
+    o.draw(kWidth, kHeight);
 
     std::vector<unsigned char> px = fb.read_rgba8();
     const GLenum err = glGetError();
 
-    glDeleteBuffers(1, &vbo);
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(plot);
-    glDeleteProgram(overlay);
     if (err != GL_NO_ERROR) {
         std::fprintf(stderr, "fresnel_curves: OpenGL error 0x%04x\n", err);
         return 1;
