@@ -1,185 +1,37 @@
 // raykit — bench_fresnel.cpp: speed AND accuracy of every function in shaders/raykit/fresnel.glsl
-// (CPU build), for docs/benchmarks.md (scripts/bench.sh runs this and scripts/bench_report.py).
+// (CPU build), for docs/benchmarks.md (scripts/bench.sh runs raykit_bench and scripts/bench_report.py).
 //
-// Every benchmark is named BM_fresnel/<variant>/<parameters> and reports:
-//   items_per_second, ns_per_call  speed over a pre-generated array of kInputs inputs (each call's
-//                                  arguments, material constants included, are loaded from that
-//                                  array so the compiler cannot hoist per-material work out of
-//                                  the loop, as it cannot on a GPU either);
-//   max_abs_err, mean_abs_err      absolute error against the float64 references of
-//                                  tests/reference/fresnel_ref.hpp over a dense sweep of kSweep
-//                                  inputs, computed once at start-up, outside any timing;
-//   max_ulp                        only where meaningful (exact functions whose result does not
-//                                  cross zero); approximations are judged by absolute error;
-//   worst_at                       the swept input (cos, eta, R...) where max_abs_err occurs.
-// The label is "<family>|<function>|<what the error is measured against>"; the family titles are
-// in the JSON context (raykit_family:<family>), so the report needs no knowledge of its own.
+// Suite "fresnel": every benchmark is named BM_fresnel/<variant>/<parameters>; the counters, the
+// label and the registration machinery are described in bench_common.hpp. Errors are taken against
+// the float64 references of tests/reference/fresnel_ref.hpp over a dense sweep of kSweep inputs;
+// worst_at is the swept input (cos, eta, R...) where max_abs_err occurs.
 //
 // Approximations (Schlick, the fast dielectric, LUTs, the thesis's pane model) are measured against
 // the EXACT quantity they stand in for, which is the speed-vs-error trade-off the report plots.
 // CPU timings are only meaningful as ratios between variants; GPU costs differ (e.g. a LUT is a
 // texture fetch there, and sqrt/div/asin have different relative costs).
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <cstdio>
-#include <limits>
-#include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "bench_common.hpp"
 #include "raykit/fresnel.hpp"
 #include "reference/fresnel_ref.hpp"
-#include "test_util.hpp"
 
-#ifndef RAYKIT_BENCH_BUILD_TYPE
-#define RAYKIT_BENCH_BUILD_TYPE "unknown"
-#endif
-#ifndef RAYKIT_BENCH_COMPILER
-#define RAYKIT_BENCH_COMPILER "unknown"
-#endif
-
+namespace rkbench {
 namespace {
 
 using raykit::vec2;
 using raykit::vec3;
 
-constexpr std::size_t kInputs = 4096;  // calls per benchmark iteration
-constexpr int kSweep = 20001;          // accuracy sweep points
-
 // Gold's complex index per RGB channel (as quoted in fresnel.glsl).
 const vec3 kGoldN(0.143f, 0.374f, 1.442f);
 const vec3 kGoldK(3.983f, 2.385f, 1.603f);
 
-// ---------------------------------------------------------------------------------------------
-// Accuracy bookkeeping.
-
-struct Accuracy {
-    double max_abs = 0.0, sum_abs = 0.0, max_ulp = 0.0, worst_at = 0.0;
-    long count = 0;
-    bool has_ulp = false;
-
-    void add(double got, double exact, double at)
-    {
-        double e = std::abs(got - exact);
-        if (std::isnan(e)) e = std::numeric_limits<double>::infinity();
-        sum_abs += e;
-        ++count;
-        if (e > max_abs || count == 1) {
-            max_abs = e;
-            worst_at = at;
-        }
-    }
-    void add_ulp(float got, double exact, double at)
-    {
-        add(static_cast<double>(got), exact, at);
-        has_ulp = true;
-        max_ulp = std::max(max_ulp, rktest::ulp_error(got, exact));
-    }
-    double mean_abs() const { return count > 0 ? sum_abs / static_cast<double>(count) : 0.0; }
-};
-
-/// The i-th of kSweep points spread evenly over [lo, hi], rounded to float (the function's input).
-float sweep_point(int i, double lo, double hi)
-{
-    return static_cast<float>(lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(kSweep - 1));
-}
-
-/// Accuracy over the sweep of [lo, hi]: `visit(x, acc)` evaluates the function at float x and adds
-/// the result(s) with their float64 reference.
-template <class Visit>
-Accuracy sweep(double lo, double hi, Visit visit)
-{
-    Accuracy acc;
-    for (int i = 0; i < kSweep; ++i) {
-        visit(sweep_point(i, lo, hi), acc);
-    }
-    return acc;
-}
-
-double d(float x) { return static_cast<double>(x); }
-
 double stack(double r, int surfaces) { return ref::stack_surfaces(r, surfaces); }
-
-// ---------------------------------------------------------------------------------------------
-// Inputs: uniform random numbers from a fixed seed, generated before any timing.
-
-class Rng {
-public:
-    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(gen_); }
-    vec3 unit_vector()
-    {
-        for (;;) {
-            vec3 v(uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f));
-            float l2 = glm::dot(v, v);
-            if (l2 > 1e-4f && l2 <= 1.0f) return v / std::sqrt(l2);
-        }
-    }
-
-private:
-    std::mt19937 gen_{20240601u};
-};
-
-template <class In, class Make>
-std::vector<In> make_inputs(Make make)
-{
-    Rng rng;
-    std::vector<In> v;
-    v.reserve(kInputs);
-    for (std::size_t i = 0; i < kInputs; ++i) v.push_back(make(rng, i));
-    return v;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Registration.
-
-struct Info {
-    std::string variant;   // BM_fresnel/<variant>/...
-    std::string params;    // .../<params>, e.g. "eta:1.52"
-    std::string family;    // key of a raykit_family:<key> context entry
-    std::string function;  // the call, as a reader would write it
-    std::string against;   // what the error is measured against
-};
-
-std::vector<std::pair<std::string, std::string>>& families()
-{
-    static std::vector<std::pair<std::string, std::string>> f;
-    return f;
-}
-
-void add_family(const std::string& key, const std::string& title) { families().emplace_back(key, title); }
-
-/// Registers BM_fresnel/<variant>/<params>: times `fn(input)` over `inputs` and attaches `acc`.
-template <class In, class Fn>
-void add_bench(const Info& info, const Accuracy& acc, std::vector<In> inputs, Fn fn)
-{
-    const std::string name = "BM_fresnel/" + info.variant + "/" + info.params;
-    const std::string label = info.family + "|" + info.function + "|" + info.against;
-    benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
-        const In* in = inputs.data();
-        const std::size_t n = inputs.size();
-        for (auto _ : st) {
-            for (std::size_t i = 0; i < n; ++i) {
-                auto r = fn(in[i]);
-                benchmark::DoNotOptimize(r);
-            }
-        }
-        st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(n));
-        // n calls per iteration as a rate, inverted: seconds per call (the console shows "ns").
-        st.counters["time_per_call"] = benchmark::Counter(static_cast<double>(n),
-                                                        benchmark::Counter::kIsIterationInvariantRate |
-                                                            benchmark::Counter::kInvert);
-        st.counters["max_abs_err"] = acc.max_abs;
-        st.counters["mean_abs_err"] = acc.mean_abs();
-        if (acc.has_ulp) st.counters["max_ulp"] = acc.max_ulp;
-        st.counters["worst_at"] = acc.worst_at;
-        st.SetLabel(label);
-    });
-}
 
 std::string eta_tag(float eta)
 {
@@ -558,29 +410,34 @@ void register_helpers()
               });
 }
 
-}  // namespace
 
-int main(int argc, char** argv)
+void register_all()
 {
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-
     register_reflectance(1.52f);
     register_reflectance(1.33f);
     register_internal();
     register_conductor();
     register_panes();
     register_helpers();
-
-    benchmark::AddCustomContext("raykit_build_type", RAYKIT_BENCH_BUILD_TYPE);
-    benchmark::AddCustomContext("raykit_compiler", RAYKIT_BENCH_COMPILER);
-    benchmark::AddCustomContext("raykit_inputs_per_iteration", std::to_string(kInputs));
-    benchmark::AddCustomContext("raykit_sweep_points", std::to_string(kSweep));
-    benchmark::AddCustomContext("raykit_baseline", "BM_fresnel/schlick/eta:1.52");
-    benchmark::AddCustomContext("raykit_plot_families", "reflectance_eta:1.52,reflectance_eta:1.33,pane,conductor");
-    for (const auto& f : families()) benchmark::AddCustomContext("raykit_family:" + f.first, f.second);
-
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
 }
+
+const SuiteRegistrar registrar(
+    {"fresnel", 10, "Fresnel: shaders/raykit/fresnel.glsl", "bench/bench_fresnel.cpp", "call",
+     "BM_fresnel/schlick/eta:1.52",
+     {"reflectance_eta:1.52", "reflectance_eta:1.33", "pane", "conductor"},
+     "- **ns/call**: each call's arguments, material constants included, are loaded per call from the "
+     "pre-generated array, so nothing per-material is hoisted out of the loop.\n"
+     "- **max / mean abs err**: against float64 references (`tests/reference/fresnel_ref.hpp`, or the "
+     "formula named in the last column) over a dense sweep of the input range. Approximations (Schlick, "
+     "the fast dielectric, LUTs, the thesis's pane model) are measured against the *exact* quantity they "
+     "stand in for.\n"
+     "- **worst at**: the swept input (cos, eta, R or F0, see the parameters in the name) where the max "
+     "abs error occurs.",
+     "On a GPU, `sqrt`, division and `asin`/`atan` have different relative costs, a LUT is a texture fetch "
+     "through the texture unit rather than two loads and a lerp, and the total-internal-reflection branch "
+     "costs divergence rather than mispredictions. The error columns, on the other hand, carry over (same "
+     "source, IEEE float32), up to the driver's `sqrt`/division/`asin` precision."},
+    &register_all);
+
+}  // namespace
+}  // namespace rkbench

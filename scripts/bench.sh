@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds and runs raykit's CPU benchmarks, then regenerates docs/benchmarks.md and
-# docs/img/bench_fresnel_speed_error.png from the results (scripts/bench_report.py).
-# Usage: bash scripts/bench.sh        (from anywhere; takes about 1-2 minutes)
+# Builds and runs raykit's CPU benchmarks (every bench/bench_*.cpp, one executable), then
+# regenerates docs/benchmarks.md and docs/img/bench_<suite>_speed_error.png (bench_fresnel_...,
+# bench_tonemap_...) from the results (scripts/bench_report.py).
+# Usage: bash scripts/bench.sh        (from anywhere; takes about 1.5-2 minutes)
 # Extra arguments are passed to raykit_bench, e.g. --benchmark_filter=schlick (the report then
 # only holds what ran).
 set -euo pipefail
@@ -13,7 +14,8 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON
 cmake --build build --target raykit_bench -j2
 
 # JSON goes to build/bench.json (what the report reads); the console keeps the readable table.
-# 0.2 s per repetition is plenty at 4096 calls per iteration and keeps the whole run under a minute.
+# 0.2 s per repetition is plenty at 4096 calls per iteration and keeps the ~60 benchmarks' run
+# around a minute and a half.
 # Random interleaving spreads each benchmark's repetitions over the whole run, so the median the
 # report uses shrugs off a slow patch (shared/virtual machines) instead of a whole benchmark eating it.
 build/bench/raykit_bench \

@@ -1,16 +1,24 @@
 #!/usr/bin/env python3
-"""Turns raykit_bench's Google Benchmark JSON into docs/benchmarks.md and a speed-vs-error plot.
+"""Turns raykit_bench's Google Benchmark JSON into docs/benchmarks.md and speed-vs-error plots.
 
 Usage: python3 scripts/bench_report.py --json build/bench.json [--out-dir docs]
 
-Writes OUT_DIR/benchmarks.md (machine context, one table per family), OUT_DIR/img/bench_fresnel.dat
-and, when gnuplot is on PATH, OUT_DIR/img/bench_fresnel_speed_error.png. Pure standard library.
+Writes OUT_DIR/benchmarks.md (machine context, then one section per bench file ("suite"), each with
+its plot and one table per family, in registration order) and, per suite with plotted families,
+OUT_DIR/img/bench_<suite>.dat and, when gnuplot is on PATH, OUT_DIR/img/bench_<suite>_speed_error.png.
+Pure standard library.
 
-Everything the report says about a benchmark comes from the JSON written by bench/bench_fresnel.cpp:
-  name     BM_fresnel/<variant>/<parameters>
-  label    "<family>|<function>|<what the error is measured against>"
-  counters items_per_second, max_abs_err, mean_abs_err, max_ulp (optional), worst_at
-  context  raykit_family:<family> = title, raykit_baseline, raykit_plot_families, raykit_build_type...
+Everything the report says about a benchmark comes from the JSON written by bench/bench_*.cpp
+(see bench/bench_common.hpp and bench/bench_main.cpp):
+  name     BM_<suite>/<variant>/<parameters>
+  label    "<family>|<function>|<what the error is measured against>[|<flags>]", flags a comma list
+           ("cross": the error is against a different formula, drawn in another colour)
+  counters items_per_second, max_abs_err, mean_abs_err, max_ulp (optional), worst_at or
+           worst_at_r/g/b (an RGB input)
+  context  raykit_suites, raykit_suite:<suite>:<title|source|unit|baseline|families|plot_families|
+           about|gpu>, raykit_family:<family> = title, raykit_build_type...
+JSON without raykit_suites (older raykit_bench) is read as one suite, "fresnel", with
+raykit_baseline and raykit_plot_families.
 With --benchmark_repetitions the median aggregate is used (and the cv aggregate, when present, is
 shown as the run-to-run spread); without, the median of whatever iteration runs there are.
 """
@@ -19,14 +27,22 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import statistics
 import subprocess
 import sys
 
+DEFAULT_SUITE = "fresnel"
 DEFAULT_BASELINE = "BM_fresnel/schlick/eta:1.52"
-PNG_NAME = "bench_fresnel_speed_error.png"
-DAT_NAME = "bench_fresnel.dat"
+
+
+def png_name(suite):
+    return "bench_%s_speed_error.png" % suite
+
+
+def dat_name(suite):
+    return "bench_%s.dat" % suite
 
 
 # ------------------------------------------------------------------------------------------------
@@ -39,6 +55,7 @@ class Row:
     def __init__(self, name, entry):
         self.name = name
         parts = name.split("/")
+        self.suite = parts[0][3:] if parts[0].startswith("BM_") else parts[0]
         self.variant = parts[1] if len(parts) > 1 else name
         self.params = "/".join(parts[2:])
         label = entry.get("label", "")
@@ -46,10 +63,13 @@ class Row:
         self.family = fields[0] if len(fields) > 0 and fields[0] else "other"
         self.function = fields[1] if len(fields) > 1 else self.variant
         self.against = fields[2] if len(fields) > 2 else ""
+        self.flags = set(f.strip() for f in fields[3].split(",") if f.strip()) if len(fields) > 3 else set()
         self.max_abs = entry.get("max_abs_err")
         self.mean_abs = entry.get("mean_abs_err")
         self.max_ulp = entry.get("max_ulp")
         self.worst_at = entry.get("worst_at")
+        rgb = [entry.get("worst_at_" + c) for c in "rgb"]
+        self.worst_rgb = rgb if all(v is not None for v in rgb) else None
         self.ns = ns_per_call(entry)
         self.cv = None  # relative run-to-run spread of the time, when repetitions were aggregated
         self.reps = 1
@@ -116,6 +136,66 @@ def load(path):
 
 
 # ------------------------------------------------------------------------------------------------
+# Suites: one per bench_<tech>.cpp, each with its families in registration order
+
+
+class Suite:
+    def __init__(self, name, context, rows, legacy=False):
+        key = "raykit_suite:%s:" % name
+        self.name = name
+        self.rows = rows
+        self.title = context.get(key + "title", name)
+        self.source = context.get(key + "source", "")
+        self.unit = context.get(key + "unit", "call")
+        self.about = context.get(key + "about", "")
+        self.gpu = context.get(key + "gpu", "")
+        if legacy:
+            baseline_name = context.get("raykit_baseline", DEFAULT_BASELINE)
+            listed_plot = context.get("raykit_plot_families")
+        else:
+            baseline_name = context.get(key + "baseline", "")
+            listed_plot = context.get(key + "plot_families")
+        self.baseline_name = baseline_name
+        self.baseline = next((r for r in rows if r.name == baseline_name and r.ns), None)
+
+        present = []
+        for r in rows:
+            if r.family not in present:
+                present.append(r.family)
+        listed = [f for f in context.get(key + "families", "").split(",") if f]
+        self.families = [f for f in listed if f in present] + [f for f in present if f not in listed]
+
+        wanted = [f for f in (listed_plot or "").split(",") if f]
+        fams = [f for f in wanted if f in present] if listed_plot is not None else present
+        self.plot_families = [f for f in fams if any(plottable(r) for r in self.family_rows(f))]
+
+    def family_rows(self, family):
+        return [r for r in self.rows if r.family == family]
+
+    def per(self):
+        """The unit in a column header: "call" -> "call", "RGB pixel" -> "pixel"."""
+        return self.unit.split()[-1] if self.unit.split() else "call"
+
+    def short_name(self):
+        """"Fresnel: shaders/raykit/fresnel.glsl" -> "fresnel.glsl" (for the plot's title)."""
+        head, _, rest = self.title.partition(":")
+        return re.sub(r"[^\s,]*/", "", rest).strip() if rest else head.strip()
+
+
+def make_suites(context, rows):
+    names = [n for n in context.get("raykit_suites", "").split(",") if n]
+    legacy = not names
+    if legacy:
+        names = [DEFAULT_SUITE]
+    by_suite = {}
+    for r in rows:
+        suite = r.suite if r.suite in names or not legacy else DEFAULT_SUITE
+        by_suite.setdefault(suite, []).append(r)
+    extra = [n for n in by_suite if n not in names]  # benchmarks of suites the context does not describe
+    return [Suite(n, context, by_suite[n], legacy) for n in names + extra if n in by_suite]
+
+
+# ------------------------------------------------------------------------------------------------
 # Formatting
 
 
@@ -153,6 +233,12 @@ def family_title(context, family):
 def short_title(context, family):
     title = family_title(context, family)
     return title.split(":", 1)[0].strip() if ":" in title else title
+
+
+def fmt_worst(row):
+    if row.worst_rgb is not None:
+        return "(%s)" % ", ".join("%.4g" % v for v in row.worst_rgb)
+    return "%.4g" % row.worst_at if row.worst_at is not None else "—"
 
 
 def md_escape(text):
@@ -195,18 +281,25 @@ def machine_table(context, rows):
 # Plot
 
 
-def plot_families(context, rows):
-    present = []
-    for r in rows:
-        if r.family not in present:
-            present.append(r.family)
-    wanted = [f for f in context.get("raykit_plot_families", "").split(",") if f]
-    fams = [f for f in wanted if f in present] if wanted else present
-    return [f for f in fams if any(plottable(r) for r in rows if r.family == f)]
-
-
 def plottable(r):
     return r.ns is not None and r.max_abs is not None and math.isfinite(r.max_abs)
+
+
+def point_labels(pts):
+    """The variant, or, where a family times a variant more than once, variant/params without the
+    parameters all of those rows share; "(exact)" added for zero error (drawn at the axis floor)."""
+    labels = []
+    for r in pts:
+        same = [q for q in pts if q.variant == r.variant]
+        text = r.variant
+        if len(same) > 1 and r.params:
+            common = set.intersection(*(set(q.params.split("/")) for q in same))
+            own = [p for p in r.params.split("/") if p not in common]
+            text += "/" + "/".join(own) if own else "/" + r.params
+        if r.max_abs == 0:
+            text += " (exact)"
+        labels.append(text)
+    return labels
 
 
 def layout_labels(points, xlo, xhi, ylo, yhi, plot_w_px, plot_h_px):
@@ -262,23 +355,23 @@ def layout_labels(points, xlo, xhi, ylo, yhi, plot_w_px, plot_h_px):
     return placed
 
 
-def write_plot(context, rows, img_dir):
-    fams = plot_families(context, rows)
+def write_plot(context, suite, img_dir):
+    fams = suite.plot_families
     if not fams:
-        print("bench_report: nothing to plot", file=sys.stderr)
         return None
     os.makedirs(img_dir, exist_ok=True)
-    dat_path = os.path.join(img_dir, DAT_NAME)
-    png_path = os.path.join(img_dir, PNG_NAME)
+    dat_path = os.path.join(img_dir, dat_name(suite.name))
+    png_path = os.path.join(img_dir, png_name(suite.name))
 
     ncols = 2 if len(fams) > 1 else 1
     nrows = (len(fams) + ncols - 1) // ncols
-    panel_w, panel_h = 760, 520
+    most = max(len([r for r in suite.family_rows(f) if plottable(r)]) for f in fams)
+    panel_w, panel_h = (760, 520) if ncols > 1 or most <= 12 else (1100, 760)
     plot_w_px, plot_h_px = panel_w - 150, panel_h - 120
 
     blocks, panels = [], []
     for fam in fams:
-        pts = [r for r in rows if r.family == fam and plottable(r)]
+        pts = [r for r in suite.family_rows(fam) if plottable(r)]
         errs = [r.max_abs for r in pts if r.max_abs > 0]
         floor = min(errs) / 2 if errs else 1e-9
         xs = [max(r.max_abs, floor) for r in pts]
@@ -287,45 +380,54 @@ def write_plot(context, rows, img_dir):
         xhi = 10 ** math.ceil(math.log10(max(xs)) + 0.3)
         ylo = 10 ** math.floor(math.log10(min(ys) / 1.3))
         yhi = max(ys) * 2.0
-        labels = layout_labels([(x, y, r.variant) for x, y, r in zip(xs, ys, pts)], xlo, xhi, ylo, yhi,
-                               plot_w_px, plot_h_px)
+        texts = point_labels(pts)
+        labels = layout_labels(list(zip(xs, ys, texts)), xlo, xhi, ylo, yhi, plot_w_px, plot_h_px)
         lines = ["# family %s: %s" % (fam, family_title(context, fam)),
-                 "# max_abs_err ns_per_call label_x label_y align(0 left, 1 right) variant"]
-        for x, y, r, (lx, ly, align) in zip(xs, ys, pts, labels):
-            lines.append("%.6e %.6f %.6e %.6f %d \"%s\"" % (x, y, lx, ly, 0 if align == "left" else 1, r.variant))
+                 "# max_abs_err ns_per_call label_x label_y align(0 left, 1 right) label cross(1: error vs another formula)"]
+        for x, y, r, text, (lx, ly, align) in zip(xs, ys, pts, texts, labels):
+            lines.append("%.6e %.6f %.6e %.6f %d \"%s\" %d" % (
+                x, y, lx, ly, 0 if align == "left" else 1, text, 1 if "cross" in r.flags else 0))
         blocks.append("\n".join(lines))
-        panels.append((fam, xlo, xhi, ylo, yhi))
+        panels.append((fam, xlo, xhi, ylo, yhi, any("cross" in r.flags for r in pts)))
 
     with open(dat_path, "w", encoding="utf-8") as f:
-        f.write("# raykit_bench: speed vs error, written by scripts/bench_report.py (one block per family)\n")
+        f.write("# raykit_bench %s: speed vs error, written by scripts/bench_report.py (one block per family)\n"
+                % suite.name)
         f.write("\n\n\n".join(blocks) + "\n")
 
     if shutil.which("gnuplot") is None:
-        print("bench_report: warning: gnuplot not found on PATH, %s not drawn" % PNG_NAME, file=sys.stderr)
+        print("bench_report: warning: gnuplot not found on PATH, %s not drawn" % png_name(suite.name), file=sys.stderr)
         return None
+
+    def q(text):
+        return text.replace("'", "''")
 
     g = []
     g.append("set terminal pngcairo size %d,%d font 'Sans,10' enhanced" % (panel_w * ncols, panel_h * nrows))
-    g.append("set output '%s'" % png_path.replace("'", "''"))
-    g.append("set multiplot layout %d,%d title 'raykit fresnel.glsl: CPU time per call vs max abs error "
-             "(median of repetitions; CPU times are ratios only)' font 'Sans,13'" % (nrows, ncols))
+    g.append("set output '%s'" % q(png_path))
+    g.append("set multiplot layout %d,%d title '%s' font 'Sans,13' noenhanced" % (nrows, ncols, q(
+        "raykit %s: CPU time per %s vs max abs error (median of repetitions; CPU times are ratios only)"
+        % (suite.short_name(), suite.unit))))
     g.append("set logscale xy")
     g.append("set format x '10^{%L}'")
     g.append("set grid xtics ytics mytics lc rgb '#dddddd'")
     g.append("set ytics (0.5, 1, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000)")
-    g.append("set key off")
-    g.append("set xlabel 'max abs error vs exact (log scale)'")
-    g.append("set ylabel 'ns / call (CPU, log scale)'")
+    g.append("set xlabel 'max abs error vs float64 reference (log scale)'")
+    g.append("set ylabel 'ns / %s (CPU, log scale)'" % q(suite.unit))
     g.append("set tmargin 3")
-    dat = dat_path.replace("'", "''")
-    for idx, (fam, xlo, xhi, ylo, yhi) in enumerate(panels):
-        g.append("set title '%s' font 'Sans,11'" % short_title(context, fam).replace("'", "''"))
+    dat = q(dat_path)
+    for idx, (fam, xlo, xhi, ylo, yhi, cross) in enumerate(panels):
+        g.append("set title '%s' font 'Sans,11' noenhanced" % q(short_title(context, fam)))
         g.append("set xrange [%g:%g]" % (xlo, xhi))
         g.append("set yrange [%g:%g]" % (ylo, yhi))
+        g.append("set key bottom right box opaque font 'Sans,9' noenhanced" if cross else "set key off")
         g.append(
             "plot '{d}' index {i} using 1:(abs($4/$2-1) > 0.01 ? $2 : 1/0):($3-$1):($4-$2) "
             "with vectors nohead lc rgb '#aaaaaa' notitle, \\\n"
-            "  '{d}' index {i} using 1:2 with points pt 7 ps 1.3 lc rgb '#1f77b4' notitle, \\\n"
+            "  '{d}' index {i} using 1:($7 == 0 ? $2 : 1/0) with points pt 7 ps 1.3 lc rgb '#1f77b4' "
+            "title 'error vs its own formula', \\\n"
+            "  '{d}' index {i} using 1:($7 == 1 ? $2 : 1/0) with points pt 5 ps 1.3 lc rgb '#ff7f0e' "
+            "title 'error vs another formula (cross-reference, see table)', \\\n"
             "  '{d}' index {i} using 3:($5 == 0 ? $4 : 1/0):6 with labels left font 'Sans,9' noenhanced notitle, \\\n"
             "  '{d}' index {i} using 3:($5 == 1 ? $4 : 1/0):6 with labels right font 'Sans,9' noenhanced notitle"
             .format(d=dat, i=idx))
@@ -344,90 +446,115 @@ def write_plot(context, rows, img_dir):
 # Markdown
 
 
-def write_markdown(context, rows, out_dir, png):
-    baseline_name = context.get("raykit_baseline", DEFAULT_BASELINE)
-    base = next((r for r in rows if r.name == baseline_name and r.ns), None)
+def paragraph(text):
+    """A family title's details as a sentence: capitalised, with a full stop."""
+    text = text.strip()
+    if not text:
+        return ""
+    return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
-    families = []
-    for r in rows:
-        if r.family not in families:
-            families.append(r.family)
+
+def write_markdown(context, rows, suites, out_dir, pngs):
+    pngs_written = [os.path.basename(p) for p in pngs.values() if p]
+    sources = [s.source for s in suites if s.source]
 
     md = []
     md.append("# raykit benchmarks")
     md.append("")
     md.append("<!-- Generated by scripts/bench_report.py from raykit_bench's JSON. Do not edit by hand. -->")
     md.append("")
-    md.append("Reproduce with `bash scripts/bench.sh` (Release build of `bench/bench_fresnel.cpp`, 3 repetitions, "
-              "then `python3 scripts/bench_report.py --json build/bench.json --out-dir docs`, which rewrites this "
-              "file and `img/bench_fresnel_speed_error.png`).")
+    md.append("Reproduce with `bash scripts/bench.sh` (Release build of %s, 3 repetitions, then "
+              "`python3 scripts/bench_report.py --json build/bench.json --out-dir docs`, which rewrites this "
+              "file%s)." % (
+                  ", ".join("`%s`" % s for s in sources) if sources else "`bench/bench_*.cpp`",
+                  " and " + ", ".join("`img/%s`" % p for p in pngs_written) if pngs_written else ""))
     md.append("")
+    if len(suites) > 1:
+        md.append("Sections: " + ", ".join("[%s](#%s)" % (s.title.partition(":")[0].strip(), anchor(s.title))
+                                           for s in suites) + ".")
+        md.append("")
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))
     md.append("")
     md.append("## How to read the tables")
     md.append("")
-    md.append("- **ns/call**: CPU time per call, throughput over a pre-generated array of independent inputs "
-              "(each call's arguments, material constants included, are loaded per call, so nothing per-material "
-              "is hoisted out of the loop). Only the *ratios* between rows mean anything; absolute CPU times "
-              "are not the point (see [GPU figures](#gpu-figures)).")
-    if base:
-        md.append("- **relative cost**: ns/call divided by that of `%s` (`%s`) = 1.0."
-                  % (base.name, base.function.split("[")[0].strip()))
-    else:
-        md.append("- **relative cost**: not available (baseline `%s` not in this run)." % baseline_name)
-    md.append("- **max / mean abs err**: absolute error against float64 references "
-              "(`tests/reference/fresnel_ref.hpp`, or the formula named in the last column) over a dense sweep of "
-              "the input range, computed once outside the timing. Approximations (Schlick, the fast dielectric, "
-              "LUTs, the thesis's pane model) are measured against the *exact* quantity they stand in for.")
+    md.append("- **ns/call** (ns/pixel where a call processes a pixel): CPU time per call, throughput over a "
+              "pre-generated array of independent inputs. Only the *ratios* between rows mean anything; "
+              "absolute CPU times are not the point (see [GPU figures](#gpu-figures)).")
+    md.append("- **relative cost**: ns/call divided by that of the section's baseline (named at the top of each "
+              "section) = 1.0.")
+    md.append("- **max / mean abs err**: absolute error against float64 references over a dense sweep of the "
+              "input range, computed once outside the timing; each section says which references.")
     md.append("- **max ulp**: only where meaningful (exact functions whose result stays away from zero); "
-              "`—` for approximations.")
-    md.append("- **worst at**: the swept input (cos, eta, R or F0, see the parameters in the name) where the max "
-              "abs error occurs.")
+              "`—` otherwise.")
+    md.append("- **worst at**: the swept input where the max abs error occurs.")
     md.append("")
-    md.append("## Speed vs error")
-    md.append("")
-    if png:
-        md.append("![speed vs error](img/%s)" % PNG_NAME)
-    else:
-        md.append("_(plot not drawn: gnuplot was not available when this report was generated)_")
-    md.append("")
-    for fam in families:
-        fam_rows = [r for r in rows if r.family == fam]
-        title = family_title(context, fam)
-        head, _, rest = title.partition(":")
-        md.append("## " + (head.strip() if rest else title))
+    for suite in suites:
+        md.append("## " + suite.title)
         md.append("")
-        if rest:
-            md.append(rest.strip()[0].upper() + rest.strip()[1:] + ".")
+        intro = []
+        if suite.source:
+            intro.append("Source: `%s`." % suite.source)
+        if suite.baseline:
+            intro.append("Relative cost 1.0: `%s` (`%s`)." % (
+                suite.baseline.name, suite.baseline.function.split("[")[0].strip()))
+        else:
+            intro.append("Relative cost: not available (baseline `%s` not in this run)." % suite.baseline_name)
+        md.append(" ".join(intro))
+        md.append("")
+        if suite.about:
+            md.append(suite.about)
             md.append("")
-        md.append("| function | benchmark | ns/call | relative cost | max abs err | mean abs err | max ulp | worst at "
-                  "| error against |")
-        md.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
-        for r in fam_rows:
-            rel = "%.2f" % (r.ns / base.ns) if (base and r.ns) else "—"
-            md.append("| %s | `%s` | %s | %s | %s | %s | %s | %s | %s |" % (
-                md_escape(fmt_function(r.function)),
-                md_escape(r.variant + ("/" + r.params if r.params else "")),
-                fmt_ns(r), rel, fmt_err(r.max_abs), fmt_err(r.mean_abs),
-                "%.1f" % r.max_ulp if r.max_ulp is not None else "—",
-                "%.4g" % r.worst_at if r.worst_at is not None else "—",
-                md_escape(r.against)))
-        md.append("")
+        if suite.plot_families:
+            md.append("### Speed vs error")
+            md.append("")
+            if pngs.get(suite.name):
+                md.append("![speed vs error, %s](img/%s)" % (suite.name, png_name(suite.name)))
+            else:
+                md.append("_(plot not drawn: gnuplot was not available when this report was generated)_")
+            md.append("")
+        base = suite.baseline
+        for fam in suite.families:
+            fam_rows = suite.family_rows(fam)
+            title = family_title(context, fam)
+            head, _, rest = title.partition(":")
+            md.append("### " + (head.strip() if rest else title))
+            md.append("")
+            if rest:
+                md.append(paragraph(rest))
+                md.append("")
+            md.append("| function | benchmark | ns/%s | relative cost | max abs err | mean abs err | max ulp | worst at "
+                      "| error against |" % suite.per())
+            md.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
+            for r in fam_rows:
+                rel = "%.2f" % (r.ns / base.ns) if (base and r.ns) else "—"
+                md.append("| %s | `%s` | %s | %s | %s | %s | %s | %s | %s |" % (
+                    md_escape(fmt_function(r.function)),
+                    md_escape(r.variant + ("/" + r.params if r.params else "")),
+                    fmt_ns(r), rel, fmt_err(r.max_abs), fmt_err(r.mean_abs),
+                    "%.1f" % r.max_ulp if r.max_ulp is not None else "—",
+                    fmt_worst(r),
+                    md_escape(r.against)))
+            md.append("")
     md.append("## GPU figures")
     md.append("")
-    md.append("None were recorded yet on a GPU. The CPU times above are ratios only: on a GPU, `sqrt`, division "
-              "and `asin`/`atan` have different relative costs, a LUT is a texture fetch through the texture unit "
-              "rather than two loads and a lerp, and the total-internal-reflection branch costs divergence rather "
-              "than mispredictions. The error columns, on the other hand, carry over (same source, IEEE float32), "
-              "up to the driver's `sqrt`/division/`asin` precision.")
+    md.append("None were recorded yet on a GPU. The CPU times above are ratios only.")
+    md.append("")
+    for suite in suites:
+        if suite.gpu:
+            md.append("- **%s**: %s" % (suite.title.partition(":")[0].strip(), suite.gpu))
     md.append("")
 
     path = os.path.join(out_dir, "benchmarks.md")
     with open(path, "w", encoding="utf-8") as f:
         f.write("\n".join(md))
     return path
+
+
+def anchor(title):
+    """GitHub's heading anchor: lower case, punctuation dropped, spaces to hyphens."""
+    return re.sub(r"[^\w\- ]", "", title.strip().lower()).replace(" ", "-")
 
 
 def main(argv=None):
@@ -440,10 +567,16 @@ def main(argv=None):
     if not rows:
         print("bench_report: no benchmarks in %s" % args.json, file=sys.stderr)
         return 1
+    suites = make_suites(context, rows)
     os.makedirs(args.out_dir, exist_ok=True)
-    png = write_plot(context, rows, os.path.join(args.out_dir, "img"))
-    md = write_markdown(context, rows, args.out_dir, png)
-    print("bench_report: wrote %s (%d benchmarks)%s" % (md, len(rows), ", %s" % png if png else ""))
+    pngs = {}
+    for suite in suites:
+        pngs[suite.name] = write_plot(context, suite, os.path.join(args.out_dir, "img"))
+    if not any(s.plot_families for s in suites):
+        print("bench_report: nothing to plot", file=sys.stderr)
+    md = write_markdown(context, rows, suites, args.out_dir, pngs)
+    drawn = [p for p in pngs.values() if p]
+    print("bench_report: wrote %s (%d benchmarks)%s" % (md, len(rows), "".join(", %s" % p for p in drawn)))
     return 0
 
 
