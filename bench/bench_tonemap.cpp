@@ -382,9 +382,6 @@ const SuiteRegistrar registrar(
      "a fit, per channel vs Hill's AP1 matrices with the RRT/ODT saturation. Narkowicz suggests scaling the input "
      "by 0.6 for ACES exposure, hence the two scales; grey ramp and colours separately, since the colour rows "
      "add the hue/saturation difference of the matrices to the curve difference.\n"
-     "- **Reinhard, simple**: `rk_tonemap_reinhard(rgb, RK_HDR_MAX)` computes `(L / W) / W` with W = 1e18, a "
-     "float denormal for L below about 0.01; this CPU (no flush-to-zero) takes a slow path for those, which is "
-     "most of that row's extra time over white 4 (GPUs flush denormals).\n"
      "- **worst at**: the RGB input (display input for the inverse) where the max abs error occurs.",
      "On a GPU, `pow`, `exp2` and `log2` are native approximations and divisions are cheap, so the operators built "
      "on them (AgX: 3 log2 + 3 pow, Lottes: 6 pow, Uchimura, sRGB) cost relatively less than on this CPU, and "

@@ -66,7 +66,10 @@ RK_INLINE float rk_reinhard_extended(float x, float white)
     if (v >= w) {
         return 1.0f;
     }
-    return min(v * (1.0f + (v / w) / w) / (1.0f + v), 1.0f);
+    // For w >= 1e9, v / w^2 < 1e-9 is below half an ulp of 1: skipping the term changes no result
+    // and keeps (v / w) / w out of the denormal range (slow on CPUs).
+    float k = (w >= 1e9f) ? 0.0f : (v / w) / w;
+    return min(v * (1.0f + k) / (1.0f + v), 1.0f);
 }
 
 /// rk_tonemap_reinhard: Reinhard applied to luminance with the colour ratio kept,
