@@ -132,7 +132,10 @@ struct Result {
 inline std::string shader_dir() { return RAYKIT_SHADER_DIR; }
 
 /// Runs one case on the current GL context and on the CPU; prints a one-line report.
-inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096)
+/// `exact_outputs` (optional) lists output indices compared bit-exactly instead of with the
+/// case's tolerance (integer results such as indices and hash halves).
+inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096,
+                  const std::vector<int>& exact_outputs = {})
 {
     const size_t n_in = c.inputs.size();
     const size_t n_out = static_cast<size_t>(c.n_out);
@@ -165,7 +168,8 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
             const float g = gpu[i * n_out + k], h = cpu[k];
             const double err = std::abs(static_cast<double>(g) - h);
             const bool finite = std::isfinite(g);
-            const bool bad = !finite || !std::isfinite(h) || err > c.abs_tol + c.rel_tol * std::abs(h);
+            const bool exact = std::find(exact_outputs.begin(), exact_outputs.end(), static_cast<int>(k)) != exact_outputs.end();
+            const bool bad = !finite || !std::isfinite(h) || (exact ? g != h : err > c.abs_tol + c.rel_tol * std::abs(h));
             r.non_finite += finite ? 0 : 1;
             r.mismatches += bad ? 1 : 0;
             const double ulp = rktest::ulp_distance(g, h);

@@ -1,0 +1,851 @@
+// Tests for shaders/raykit/hash.glsl and interior_mapping.glsl (CPU build) against independent
+// float64 references (tests/reference/interior_ref.hpp): PCG3D / PCG-RXS-M-XS from their papers,
+// and a brute-force tracer over explicit room planes. Every correctness item of the interior
+// mapping work has its own TEST; each prints its measured numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "raykit/interior_mapping.hpp"
+#include "reference/interior_ref.hpp"
+#include "test_util.hpp"
+
+using namespace raykit;
+
+namespace {
+
+using u32 = std::uint32_t;
+
+double dd(float x) { return static_cast<double>(x); }
+
+bool finite_hit(const rk_im_hit& h)
+{
+    const float v[] = {h.t, h.depth, h.uv.x, h.uv.y, h.uv_dx.x, h.uv_dx.y, h.uv_dy.x, h.uv_dy.y, h.pos.x, h.pos.y, h.pos.z};
+    for (float x : v)
+        if (!std::isfinite(x)) return false;
+    return true;
+}
+
+rk_im_grid make_grid(glm::vec3 room, glm::vec3 origin)
+{
+    rk_im_grid g;
+    g.room_size = room;
+    g.origin = origin;
+    return g;
+}
+
+ref_im::Grid ref_grid(const rk_im_grid& g)
+{
+    ref_im::Grid r;
+    for (int a = 0; a < 3; ++a) {
+        r.room[a] = dd(g.room_size[a]);
+        r.origin[a] = dd(g.origin[a]);
+    }
+    return r;
+}
+
+// ---- the brute-force harness -----------------------------------------------------------------
+
+/// One test ray: a box building [lo, hi] (float, object space), the facade (axis, sign) that p
+/// lies on, the camera, the grid.
+struct Ray {
+    rk_im_grid g;
+    glm::vec3 lo, hi, p, cam;
+    int axis, sign;
+};
+
+struct Tally {
+    long rays = 0, valid = 0, exact = 0, tie_family = 0, boundary_room = 0, nudge_edge = 0, wrong_family = 0, wrong_room = 0,
+         wrong_valid = 0, non_finite = 0, t_not_above_1 = 0;
+    double max_err = 0;  // hit position error x |d_family|, in room units
+    double max_rel_err = 0;  // max err / (4 + max|q|) in units of 2^-24
+    double max_uv_err = 0;   // uv error x |d_family| x width
+    std::string worst, worst_wrong;
+    void merge(const Tally& o)
+    {
+        rays += o.rays; valid += o.valid; nudge_edge += o.nudge_edge; exact += o.exact; tie_family += o.tie_family; boundary_room += o.boundary_room;
+        wrong_family += o.wrong_family; wrong_room += o.wrong_room; wrong_valid += o.wrong_valid;
+        non_finite += o.non_finite; t_not_above_1 += o.t_not_above_1;
+        if (o.max_rel_err > max_rel_err) { max_rel_err = o.max_rel_err; worst = o.worst; }
+        max_err = std::max(max_err, o.max_err);
+        max_uv_err = std::max(max_uv_err, o.max_uv_err);
+        if (worst_wrong.empty()) worst_wrong = o.worst_wrong;
+    }
+    void print(const char* name) const
+    {
+        std::printf("[im] %-22s rays %7ld valid %7ld exact %7ld tie-family %4ld boundary-room %4ld nudge-edge %ld | WRONG family %ld room %ld "
+                    "valid %ld | non-finite %ld t<=1 %ld | max pos err %.3g rooms (%.1f x 2^-24 (4+|q|)), max uv err %.3g\n",
+                    name, rays, valid, exact, tie_family, boundary_room, nudge_edge, wrong_family, wrong_room, wrong_valid, non_finite,
+                    t_not_above_1, max_err, max_rel_err, max_uv_err);
+        if (!worst.empty()) std::printf("       worst: %s\n", worst.c_str());
+        if (!worst_wrong.empty()) std::printf("       first wrong: %s\n", worst_wrong.c_str());
+    }
+};
+
+std::string describe(const Ray& r)
+{
+    return rktest::fmt("p", r.p.x, r.p.y, r.p.z, "cam", r.cam.x, r.cam.y, r.cam.z, "room", r.g.room_size.x, r.g.room_size.y,
+                       r.g.room_size.z, "origin", r.g.origin.x, r.g.origin.y, r.g.origin.z, "face", r.axis, r.sign);
+}
+
+/// Traces one ray with the library and with the brute-force reference and classifies it.
+/// Allowed differences, counted separately: a family tie (the reference's nearest crossing of the
+/// library's family lies within the float tolerance of the nearest crossing overall) and a room
+/// boundary (the library's room differs by one along an axis where the segment p..hit passes
+/// within the float tolerance of the wall between the two rooms). Everything else is wrong.
+void check_ray(const Ray& r, bool varying, glm::vec3 jitter, u32 seed, Tally& tl)
+{
+    ++tl.rays;
+    glm::vec3 n(0.0f);
+    n[r.axis] = static_cast<float>(r.sign);
+    const rk_im_hit h = varying ? rk_im_trace_varying(r.p, r.cam, n, r.g, jitter, seed) : rk_im_trace(r.p, r.cam, n, r.g);
+    if (!finite_hit(h)) ++tl.non_finite;
+    double p[3], cam[3], lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        p[a] = dd(r.p[a]);
+        cam[a] = dd(r.cam[a]);
+        lo[a] = dd(r.lo[a]);
+        hi[a] = dd(r.hi[a]);
+    }
+    const ref_im::Grid rg = ref_grid(r.g);
+    ref_im::WallOffset off;
+    if (varying) {
+        off = [&](int axis, long k) { return dd(rk_im_wall_offset(axis, static_cast<int>(k), jitter[axis], seed)); };
+    }
+    const ref_im::Hit ref = ref_im::trace(p, cam, r.axis, r.sign, lo, hi, rg, off, 0.0009765625);
+    if (ref.valid != h.valid) {
+        ++tl.wrong_valid;
+        if (tl.worst_wrong.empty()) tl.worst_wrong = "valid: " + describe(r);
+        return;
+    }
+    if (!ref.valid) return;
+    ++tl.valid;
+    if (!(h.t > 1.0f)) ++tl.t_not_above_1;
+
+    // Normalised direction in grid units and the float tolerance scale.
+    double e[3], q[3], emax = 0, qmax = 0;
+    for (int a = 0; a < 3; ++a) {
+        e[a] = (p[a] - cam[a]) / rg.room[a];
+        q[a] = (p[a] - rg.origin[a]) / rg.room[a];
+        emax = std::max(emax, std::abs(e[a]));
+        qmax = std::max(qmax, std::max(std::abs(q[a]), std::abs(p[a]) / rg.room[a]));
+    }
+    const double scale = 4.0 + qmax;
+    const double tol = 64.0 * std::ldexp(scale, -24);  // grid units, conservative float rounding
+    auto f_of = [&](double t) { return (t - 1.0) * emax; };  // distance along d (max |d| = 1)
+    const int fam = h.family;
+    bool ok_family = fam == ref.family;
+    bool tie = false;
+    if (!ok_family) {
+        const double a = std::abs(e[fam]) / emax, b = std::abs(e[ref.family]) / emax;
+        const double slack = tol / std::max(a, 1e-30) + tol / std::max(b, 1e-30);
+        tie = std::isfinite(ref.t_family[fam]) && std::abs(f_of(ref.t_family[fam]) - f_of(ref.t)) <= slack;
+    }
+    bool ok_room = true, boundary = false;
+    for (int a = 0; a < 3; ++a) {
+        const long rr = ref.room[a], hr = h.room[a];
+        if (rr == hr) continue;
+        ok_room = false;
+        if (std::abs(rr - hr) == 1) {
+            const long wall = std::max(rr, hr);
+            const double wpos = static_cast<double>(wall) + (varying ? dd(rk_im_wall_offset(a, static_cast<int>(wall), jitter[a], seed)) : 0.0);
+            const double qh = (ref.pos[a] - rg.origin[a]) / rg.room[a];
+            if (std::abs(q[a] - wpos) <= 2.0 * tol || std::abs(qh - wpos) <= 2.0 * tol) boundary = true;
+        }
+    }
+    // The facade rule's edge: a plane of the facade axis RK_IM_NUDGE room units (within float
+    // tolerance) behind the facade may be skipped by one side and not by the other.
+    if (!(ok_family && ok_room)) {
+        const int a = r.axis;
+        const long k0 = static_cast<long>(std::floor(q[a]));
+        for (long k = k0 - 2; k <= k0 + 2; ++k) {
+            const double wpos = static_cast<double>(k) + (varying ? dd(rk_im_wall_offset(a, static_cast<int>(k), jitter[a], seed)) : 0.0);
+            if (std::abs(std::abs(wpos - q[a]) - 0.0009765625) <= 2.0 * tol) {
+                ++tl.nudge_edge;
+                return;
+            }
+        }
+    }
+    if (ok_family && ok_room) {
+        ++tl.exact;
+        // Position error on the hit, weighted by |d_family| (the conditioning of the hit), rooms.
+        const double dfam = std::abs(e[fam]) / emax;
+        double err = 0;
+        for (int a = 0; a < 3; ++a) err = std::max(err, std::abs(dd(h.pos[a]) - ref.pos[a]) / rg.room[a] * dfam);
+        const double uv_err = std::max(std::abs(dd(h.uv.x) - std::min(std::max(ref.uv[0], 0.0), 1.0)),
+                                       std::abs(dd(h.uv.y) - std::min(std::max(ref.uv[1], 0.0), 1.0))) * dfam;
+        tl.max_uv_err = std::max(tl.max_uv_err, uv_err);
+        tl.max_err = std::max(tl.max_err, err);
+        const double rel = std::max(err, uv_err) / std::ldexp(scale, -24);
+        if (rel > tl.max_rel_err) {
+            tl.max_rel_err = rel;
+            tl.worst = describe(r) + rktest::fmt(" t", h.t, "ref", ref.t, "fam", fam);
+        }
+        return;
+    }
+    if (!ok_family && !tie) {
+        ++tl.wrong_family;
+        if (tl.worst_wrong.empty())
+            tl.worst_wrong = "family: " + describe(r) + rktest::fmt(" got", fam, h.t, "ref", ref.family, ref.t);
+        return;
+    }
+    if (!ok_room && !boundary) {
+        ++tl.wrong_room;
+        if (tl.worst_wrong.empty())
+            tl.worst_wrong = "room: " + describe(r) + rktest::fmt(" got", h.room.x, h.room.y, h.room.z, "ref", ref.room[0],
+                                                                  ref.room[1], ref.room[2]);
+        return;
+    }
+    if (!ok_family) ++tl.tie_family;
+    if (!ok_room) ++tl.boundary_room;
+}
+
+enum class Kind { random, on_grid, on_grid_jitter, axis_parallel, grazing, close_camera, huge, denormal };
+
+/// A random building, facade point and camera of the given kind.
+Ray make_ray(std::mt19937& rng, Kind kind)
+{
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    auto uni = [&](float a, float b) { return a + (b - a) * U(rng); };
+    Ray r;
+    const float base = kind == Kind::huge ? uni(1e4f, 1e5f) : 0.0f;
+    r.g = make_grid(glm::vec3(uni(0.7f, 5.0f), uni(2.5f, 4.0f), uni(0.7f, 5.0f)),
+                    glm::vec3(base + uni(-10.0f, 10.0f), uni(-10.0f, 10.0f), base + uni(-10.0f, 10.0f)));
+    if (kind == Kind::denormal) r.g.origin = glm::vec3(uni(-10.0f, -1.0f), uni(-10.0f, -1.0f), uni(-10.0f, -1.0f));
+    const bool grid_faces = kind == Kind::on_grid || kind == Kind::on_grid_jitter;
+    for (int a = 0; a < 3; ++a) {
+        const float rs = r.g.room_size[a];
+        const int k0 = static_cast<int>(std::floor(U(rng) * 6.0f)) - 3;
+        const int nk = 1 + static_cast<int>(std::floor(U(rng) * 8.0f));
+        if (grid_faces) {
+            r.lo[a] = r.g.origin[a] + static_cast<float>(k0) * rs;
+            r.hi[a] = r.g.origin[a] + static_cast<float>(k0 + nk) * rs;
+        } else {
+            // Faces off the grid, at least 4 nudges away from any plane (no facade ambiguity).
+            auto off_grid = [&](float x) {
+                for (int it = 0; it < 100; ++it) {
+                    const double qd = (dd(x) - dd(r.g.origin[a])) / dd(rs);
+                    if (std::abs(qd - std::round(qd)) > 4.0 * 0.0009765625 + 1e-4 * (1.0 + std::abs(qd))) break;
+                    x += 0.01f * rs;
+                }
+                return x;
+            };
+            r.lo[a] = off_grid(r.g.origin[a] + (static_cast<float>(k0) + uni(0.0f, 1.0f)) * rs);
+            r.hi[a] = off_grid(r.lo[a] + (static_cast<float>(nk) + uni(0.0f, 1.0f)) * rs);
+        }
+    }
+    if (kind == Kind::denormal) {
+        for (int a = 0; a < 3; ++a) {
+            r.lo[a] = std::min(r.lo[a], -1.0f);
+            r.hi[a] = std::max(r.hi[a], 1.0f);
+        }
+    }
+    // Facade: x or z sides (both signs) or the roof.
+    const int pick = static_cast<int>(std::floor(U(rng) * 5.0f)) % 5;
+    r.axis = pick < 2 ? 0 : (pick < 4 ? 2 : 1);
+    r.sign = (pick == 1 || pick == 3) ? -1 : 1;
+    for (int a = 0; a < 3; ++a) r.p[a] = uni(r.lo[a], r.hi[a]);
+    r.p[r.axis] = r.sign > 0 ? r.hi[r.axis] : r.lo[r.axis];
+    if (kind == Kind::on_grid_jitter) {
+        const int ulps = static_cast<int>(std::floor(U(rng) * 17.0f)) - 8;
+        float v = r.p[r.axis];
+        for (int i = 0; i < std::abs(ulps); ++i) v = std::nextafter(v, ulps > 0 ? 1e30f : -1e30f);
+        r.p[r.axis] = v;
+    }
+    // Camera: outward hemisphere direction, log-uniform distance.
+    glm::vec3 dirv;
+    for (;;) {
+        dirv = glm::vec3(uni(-1.0f, 1.0f), uni(-1.0f, 1.0f), uni(-1.0f, 1.0f));
+        const float l2 = glm::dot(dirv, dirv);
+        if (l2 > 1e-4f && l2 <= 1.0f) break;
+    }
+    dirv = glm::normalize(dirv);
+    dirv[r.axis] = std::abs(dirv[r.axis]) * static_cast<float>(r.sign);
+    if (kind == Kind::grazing) {
+        dirv[r.axis] = static_cast<float>(r.sign) * std::pow(10.0f, uni(-7.0f, -3.0f));
+    }
+    float dist = std::pow(10.0f, uni(-2.0f, 2.5f));
+    if (kind == Kind::close_camera) dist = std::pow(10.0f, uni(-6.0f, -3.0f));
+    r.cam = r.p + dist * dirv;
+    if (kind == Kind::axis_parallel) {
+        // One or two tangent components shared with p: the ray is parallel to those families.
+        const int t1 = r.axis == 0 ? 1 : 0, t2 = r.axis == 2 ? 1 : 2;
+        const int mode = static_cast<int>(std::floor(U(rng) * 3.0f));
+        if (mode != 1) r.cam[t1] = r.p[t1];
+        if (mode != 0) r.cam[t2] = r.p[t2];
+        if (U(rng) < 0.5f) {  // and p exactly on a wall plane of a parallel family
+            const float w = r.g.origin[t1] + std::round((r.p[t1] - r.g.origin[t1]) / r.g.room_size[t1]) * r.g.room_size[t1];
+            if (w > r.lo[t1] && w < r.hi[t1] && mode != 1) r.p[t1] = r.cam[t1] = w;
+        }
+    }
+    if (kind == Kind::denormal) {
+        // p on the plane 0 of a tangent axis, the camera a denormal away: direction components
+        // of 1e-45 .. 1e-39 (and exactly zero).
+        const int t1 = r.axis == 0 ? 1 : 0;
+        const float dn[] = {1e-45f, -1e-45f, 1e-40f, -1e-40f, 1e-39f, -3e-39f, 0.0f, -0.0f};
+        r.p[t1] = 0.0f;
+        r.cam[t1] = dn[static_cast<size_t>(std::floor(U(rng) * 8.0f)) % 8];
+    }
+    return r;
+}
+
+}  // namespace
+
+// ---- hashes ------------------------------------------------------------------------------------
+
+TEST(Hash, Pcg3dAndPcgMatchIndependentReference)
+{
+    std::mt19937 rng(7u);
+    long n = 0, bad3 = 0, bad1 = 0, bad_unit = 0;
+    std::vector<u32> keys = {0u, 1u, 2u, 0x7fffffffu, 0x80000000u, 0xffffffffu, 0xfffffffeu, 12345u};
+    for (int i = 0; i < 300000; ++i) keys.push_back(static_cast<u32>(rng()));
+    for (size_t i = 0; i + 2 < keys.size(); ++i) {
+        const u32 in[3] = {keys[i], keys[i + 1], keys[(i * 7) % keys.size()]};
+        u32 out[3];
+        ref_im::pcg3d(in, out);
+        const uvec3 got = rk_pcg3d(uvec3(in[0], in[1], in[2]));
+        bad3 += (got.x != out[0] || got.y != out[1] || got.z != out[2]) ? 1 : 0;
+        bad1 += rk_hash_u32(keys[i]) != ref_im::pcg_rxs_m_xs(keys[i]) ? 1 : 0;
+        const float u = rk_u32_to_unit(keys[i]);
+        bad_unit += (dd(u) != ref_im::unit24(keys[i]) || !(u >= 0.0f && u < 1.0f)) ? 1 : 0;
+        ++n;
+    }
+    EXPECT_EQ(bad3, 0);
+    EXPECT_EQ(bad1, 0);
+    EXPECT_EQ(bad_unit, 0);
+    EXPECT_EQ(rk_u32_to_unit(0xffffffffu), 1.0f - std::ldexp(1.0f, -24));
+    // rk_hash_u32 is a bijection: no collisions over 2^20 consecutive keys.
+    std::vector<u32> h;
+    for (u32 k = 0; k < (1u << 20); ++k) h.push_back(rk_hash_u32(k));
+    std::sort(h.begin(), h.end());
+    EXPECT_EQ(std::adjacent_find(h.begin(), h.end()), h.end());
+    std::printf("[im] hashes: %ld keys, pcg3d mismatches %ld, pcg-rxs-m-xs %ld, unit %ld\n", n, bad3, bad1, bad_unit);
+}
+
+// ---- brute force -------------------------------------------------------------------------------
+
+TEST(InteriorMapping, MatchesBruteForceOverAMillionRays)
+{
+    const auto t0 = std::chrono::steady_clock::now();
+    std::mt19937 rng(20261122u);
+    struct Cat {
+        const char* name;
+        Kind kind;
+        int rays;
+    } cats[] = {{"random", Kind::random, 400000},          {"on-grid facade", Kind::on_grid, 150000},
+                {"on-grid +-8 ulp", Kind::on_grid_jitter, 150000}, {"axis-parallel", Kind::axis_parallel, 100000},
+                {"grazing", Kind::grazing, 80000},         {"camera very close", Kind::close_camera, 60000},
+                {"huge coords 1e4-1e5", Kind::huge, 40000}, {"denormal direction", Kind::denormal, 40000}};
+    Tally all;
+    for (const Cat& c : cats) {
+        Tally tl;
+        for (int i = 0; i < c.rays; ++i) check_ray(make_ray(rng, c.kind), false, glm::vec3(0.0f), 0u, tl);
+        tl.print(c.name);
+        EXPECT_EQ(tl.wrong_family, 0) << c.name;
+        EXPECT_EQ(tl.wrong_room, 0) << c.name;
+        EXPECT_EQ(tl.wrong_valid, 0) << c.name;
+        EXPECT_EQ(tl.non_finite, 0) << c.name;
+        EXPECT_EQ(tl.t_not_above_1, 0) << c.name;
+        // Position/uv error within 64 float ulps of the grid-coordinate magnitude.
+        EXPECT_LE(tl.max_rel_err, 64.0) << c.name;
+        // Ambiguous rays are counted, not hidden: the axis-parallel set deliberately puts half of
+        // its rays exactly on a wall plane they run along (p on the plane to float precision).
+        const long allowed = c.kind == Kind::axis_parallel ? c.rays / 20 : c.rays / 1000;
+        EXPECT_LE(tl.tie_family + tl.boundary_room + tl.nudge_edge, allowed) << c.name;
+        all.merge(tl);
+    }
+    all.print("ALL");
+    EXPECT_GE(all.rays, 1000000);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("[im] brute force: %ld rays in %.2f s\n", all.rays, s);
+    // CPU cost of the shared code itself (information only, not asserted).
+    std::vector<Ray> rays;
+    for (int i = 0; i < 4096; ++i) rays.push_back(make_ray(rng, Kind::random));
+    float sink = 0.0f;
+    const auto t1 = std::chrono::steady_clock::now();
+    for (int rep = 0; rep < 100; ++rep)
+        for (const Ray& r : rays) {
+            glm::vec3 n(0.0f);
+            n[r.axis] = static_cast<float>(r.sign);
+            sink += rk_im_trace_grad(r.p, r.cam, n, glm::vec3(0.01f, 0, 0), glm::vec3(0, 0.01f, 0), r.g).uv.x;
+        }
+    const auto t2 = std::chrono::steady_clock::now();
+    for (int rep = 0; rep < 100; ++rep)
+        for (const Ray& r : rays) {
+            glm::vec3 n(0.0f);
+            n[r.axis] = static_cast<float>(r.sign);
+            sink += rk_im_trace_varying(r.p, r.cam, n, r.g, glm::vec3(0.5f), 9u).uv.x;
+        }
+    const auto t3 = std::chrono::steady_clock::now();
+    const double nrays = 100.0 * static_cast<double>(rays.size());
+    std::printf("[im] CPU cost: rk_im_trace_grad %.1f ns/ray, rk_im_trace_varying %.1f ns/ray (checksum %g)\n",
+                std::chrono::duration<double, std::nano>(t2 - t1).count() / nrays,
+                std::chrono::duration<double, std::nano>(t3 - t2).count() / nrays, dd(sink));
+}
+
+TEST(InteriorMapping, VaryingWallsMatchBruteForce)
+{
+    std::mt19937 rng(99u);
+    Tally all;
+    const Kind kinds[] = {Kind::random, Kind::on_grid, Kind::axis_parallel, Kind::grazing, Kind::close_camera};
+    for (Kind k : kinds) {
+        Tally tl;
+        for (int i = 0; i < 40000; ++i) {
+            const Ray r = make_ray(rng, k);
+            const float jmax = (i % 4 == 0) ? 1.0f : 0.9f;
+            const glm::vec3 jitter(jmax * std::generate_canonical<float, 24>(rng), jmax * std::generate_canonical<float, 24>(rng),
+                                   jmax * std::generate_canonical<float, 24>(rng));
+            check_ray(r, true, jitter, static_cast<u32>(rng()), tl);
+        }
+        EXPECT_EQ(tl.wrong_family + tl.wrong_room + tl.wrong_valid + tl.non_finite + tl.t_not_above_1, 0);
+        EXPECT_LE(tl.max_rel_err, 64.0);
+        all.merge(tl);
+    }
+    all.print("varying walls");
+    EXPECT_LE(all.tie_family + all.boundary_room + all.nudge_edge, all.rays / 1000);
+    // jitter 0 is the regular grid: same family, side, room, t and uv as rk_im_trace.
+    long differ = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Ray r = make_ray(rng, i % 2 ? Kind::random : Kind::on_grid);
+        glm::vec3 n(0.0f);
+        n[r.axis] = static_cast<float>(r.sign);
+        const rk_im_hit a = rk_im_trace(r.p, r.cam, n, r.g);
+        const rk_im_hit b = rk_im_trace_varying(r.p, r.cam, n, r.g, glm::vec3(0.0f), 77u);
+        differ += (a.valid != b.valid || a.family != b.family || a.side != b.side || a.room != b.room || a.t != b.t || a.uv != b.uv) ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 0);
+}
+
+TEST(InteriorMapping, ThesisPrevNextRuleIsWrongTwoCandidateRuleIsExact)
+{
+    // 1-D: random position g, direction s, one-sided offsets delta(k) in [0, 1) (one wall per
+    // cell); the true next wall by exhaustive search vs (a) the thesis's literal rule: the next
+    // undisplaced plane n = floor(g) + step(0, s) and the one before it, both displaced, "use the
+    // previous one if it now lies beyond the pixel, else the next", (b) the library's rule.
+    std::mt19937 rng(5u);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const int N = 200000;
+    long thesis_wrong = 0, lib_wrong = 0;
+    for (int i = 0; i < N; ++i) {
+        const u32 seed = static_cast<u32>(rng());
+        const float jitter = 1.0f;  // delta uniform in [0, 1): one wall per cell, the notes' setting
+        const float g = static_cast<float>(-50.0 + 100.0 * U(rng));
+        const float s = U(rng) < 0.5 ? -1.0f : 1.0f;
+        auto wall = [&](long k) { return dd(static_cast<float>(k)) + dd(rk_im_wall_offset(1, static_cast<int>(k), jitter, seed)); };
+        // Exhaustive: nearest wall strictly beyond g along s.
+        double best = 1e300;
+        long best_k = 0;
+        for (long k = static_cast<long>(std::floor(g)) - 4; k <= static_cast<long>(std::floor(g)) + 4; ++k) {
+            const double dist = (wall(k) - dd(g)) * dd(s);
+            if (dist > 0 && dist < best) {
+                best = dist;
+                best_k = k;
+            }
+        }
+        // (a) thesis literal
+        const long n = static_cast<long>(std::floor(g)) + (s > 0 ? 1 : 0);
+        const long prev = n - static_cast<long>(s);
+        const long thesis_k = (wall(prev) - dd(g)) * dd(s) > 0 ? prev : n;
+        thesis_wrong += thesis_k != best_k ? 1 : 0;
+        // (b) library: a (nearly) vertical ray through the varying trace, entering through an x
+        // facade (so no facade nudge on y) in a grid whose x/z walls are 1e6 apart.
+        rk_im_grid gr = make_grid(glm::vec3(1e3f, 1.0f, 1e3f), glm::vec3(0.0f));
+        const glm::vec3 p(500.0f, g, 500.0f), cam(500.0f - 1e-2f, g - s, 500.0f);
+        const rk_im_hit h = rk_im_trace_varying(p, cam, glm::vec3(-1.0f, 0.0f, 0.0f), gr, glm::vec3(0.0f, jitter, 0.0f), seed);
+        const double lib_pos = dd(h.pos.y);
+        lib_wrong += (h.family != 1 || std::abs(lib_pos - wall(best_k)) > 1e-5) ? 1 : 0;
+    }
+    std::printf("[im] 1-D displaced walls, offsets uniform in [0, 1), %d rays: thesis prev/next rule wrong %ld "
+                "(seed000.md measured 52,413), two-candidate rule wrong %ld\n", N, thesis_wrong, lib_wrong);
+    EXPECT_EQ(lib_wrong, 0);
+    EXPECT_GT(thesis_wrong, N / 10);  // the thesis rule fails in the negative direction
+}
+
+// ---- the numbered correctness items -------------------------------------------------------------
+
+TEST(InteriorMapping, OnGridFacadeShowsTheRoomBehind)
+{
+    // seed000.md §2.10.2: unit cube, 4 rooms per unit, facade z = 1 on a grid plane, camera z = 5.
+    const rk_im_grid g = make_grid(glm::vec3(0.25f), glm::vec3(0.0f));
+    const float zs[] = {1.0f, std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f), 1.0f + 4e-7f, 1.0f - 4e-7f};
+    for (float z : zs) {
+        const glm::vec3 p(0.3f, 0.4f, z), cam(0.3f, 0.4f, 5.0f);
+        const rk_im_hit h = rk_im_trace(p, cam, glm::vec3(0, 0, 1), g);
+        // Thesis appendix rule for this family: plane = floor(z f) / f (dir.z < 0, step = 0).
+        const float thesis_plane = std::floor(z * 4.0f) / 4.0f;
+        const float thesis_t = (thesis_plane - cam.z) / (p.z - cam.z);
+        std::printf("[im] facade z = %.9g: t = %.9g (back wall z = %.9g, room z %d); thesis appendix t = %.9g\n", dd(z), dd(h.t),
+                    dd(h.pos.z), h.room.z, dd(thesis_t));
+        EXPECT_TRUE(h.valid);
+        EXPECT_GT(h.t, 1.0f);
+        EXPECT_EQ(h.family, 2);
+        EXPECT_EQ(h.room.z, 3);
+        EXPECT_NEAR(dd(h.pos.z), 0.75, 1e-7);
+        EXPECT_NEAR(dd(h.depth), dd(z) - 0.75, 1e-6);
+        EXPECT_NEAR(dd(h.uv.x), 0.2, 1e-5);  // x = 0.3 is 0.2 across room 1 (0.25 .. 0.5)
+        EXPECT_NEAR(dd(h.uv.y), 0.6, 1e-5);
+    }
+    // The -x face at x = 0 and the roof at y = 1, both on grid planes.
+    rk_im_hit h = rk_im_trace(glm::vec3(0.0f, 0.3f, 0.6f), glm::vec3(-3.0f, 0.3f, 0.6f), glm::vec3(-1, 0, 0), g);
+    EXPECT_EQ(h.family, 0);
+    EXPECT_EQ(h.room.x, 0);
+    EXPECT_NEAR(dd(h.pos.x), 0.25, 1e-7);
+    h = rk_im_trace(glm::vec3(0.6f, 1.0f, 0.6f), glm::vec3(0.6f, 9.0f, 0.6f), glm::vec3(0, 1, 0), g);
+    EXPECT_EQ(h.family, 1);
+    EXPECT_EQ(h.side, -1);
+    EXPECT_EQ(h.room.y, 3);
+    EXPECT_NEAR(dd(h.pos.y), 0.75, 1e-7);
+}
+
+TEST(InteriorMapping, ParallelRaysAreFinite)
+{
+    const rk_im_grid g = make_grid(glm::vec3(3.0f, 3.0f, 3.0f), glm::vec3(0.5f, 0.0f, -0.5f));
+    const float zeros[] = {0.0f, -0.0f, 1e-45f, -1e-45f, 1e-40f, -1e-39f, 1e-30f};
+    long checked = 0;
+    for (float zx : zeros)
+        for (float zy : zeros) {
+            // Ray along -z with x and y components zero/denormal: only family 2 can be hit.
+            const glm::vec3 p(1.0f, 4.0f, 6.0f);
+            const glm::vec3 cam(p.x - zx, p.y - zy, 20.0f);
+            const rk_im_hit h = rk_im_trace_grad(p, cam, glm::vec3(0, 0, 1), glm::vec3(0.01f, 0, 0), glm::vec3(0, 0.01f, 0), g);
+            EXPECT_TRUE(finite_hit(h));
+            EXPECT_TRUE(h.valid);
+            EXPECT_EQ(h.family, 2);
+            EXPECT_EQ(h.side, -1);
+            EXPECT_NEAR(dd(h.pos.z), 5.5, 1e-6);  // planes at -0.5 + 3k
+            EXPECT_TRUE(h.uv.x >= 0.0f && h.uv.x < 1.0f && h.uv.y >= 0.0f && h.uv.y < 1.0f);
+            ++checked;
+        }
+    // Ray exactly along a wall plane (x = 0.5 + 3k) and a floor plane at once.
+    const rk_im_hit h = rk_im_trace(glm::vec3(3.5f, 3.0f, 6.0f), glm::vec3(3.5f, 3.0f, 30.0f), glm::vec3(0, 0, 1), g);
+    EXPECT_TRUE(finite_hit(h));
+    EXPECT_EQ(h.family, 2);
+    EXPECT_EQ(h.room.x, 1);
+    EXPECT_EQ(h.room.y, 1);
+    std::printf("[im] parallel rays: %ld zero/denormal combinations finite and on the z family\n", checked);
+}
+
+TEST(InteriorMapping, InnerCameraIsInvalidWithFiniteDefaults)
+{
+    const rk_im_grid g = make_grid(glm::vec3(2.0f), glm::vec3(0.0f));
+    const glm::vec3 p(1.0f, 3.0f, 4.0f);
+    const glm::vec3 cams[] = {glm::vec3(1.0f, 3.0f, 1.0f), glm::vec3(5.0f, 3.0f, 4.0f) /* in the facade plane */, p /* on p */,
+                              glm::vec3(1.0f, 3.0f, std::nextafter(4.0f, 0.0f))};
+    for (const glm::vec3& cam : cams) {
+        for (int varying = 0; varying < 2; ++varying) {
+            const rk_im_hit h = varying ? rk_im_trace_varying(p, cam, glm::vec3(0, 0, 1), g, glm::vec3(0.5f), 3u)
+                                        : rk_im_trace_grad(p, cam, glm::vec3(0, 0, 1), glm::vec3(1.0f), glm::vec3(1.0f), g);
+            EXPECT_FALSE(h.valid);
+            EXPECT_TRUE(finite_hit(h));
+            EXPECT_EQ(h.t, 1.0f);
+            EXPECT_EQ(h.depth, 0.0f);
+            EXPECT_EQ(h.family, 1);
+            EXPECT_EQ(h.side, -1);
+            EXPECT_EQ(h.uv, glm::vec2(0.0f));
+            EXPECT_EQ(h.uv_dx, glm::vec2(0.0f));
+            EXPECT_EQ(h.pos, p);
+            EXPECT_EQ(h.room, varying ? rk_im_room_at_varying(p, g, glm::vec3(0.5f), 3u) : rk_im_room_at(p, g));
+        }
+    }
+    // A zero normal is invalid as well.
+    EXPECT_FALSE(rk_im_trace(p, glm::vec3(1, 3, 9), glm::vec3(0.0f), g).valid);
+}
+
+TEST(InteriorMapping, CornerRoomIsTheSameThroughBothFacades)
+{
+    // Building [0, 12] x [0, 9] x [0, 12], rooms 3 x 3 x 3; corner room (3, y, 3) behind the
+    // +x facade (x = 12) and the +z facade (z = 12). Rays from outside through either facade
+    // that end inside that room must report the same room index.
+    const rk_im_grid g = make_grid(glm::vec3(3.0f), glm::vec3(0.0f));
+    std::mt19937 rng(3u);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    long pairs = 0, same = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const float y = 3.0f + 3.0f * U(rng);
+        // Through the +x facade, camera at the front-right.
+        const glm::vec3 px(12.0f, y, 9.0f + 3.0f * U(rng)), cx(14.0f + 30.0f * U(rng), y + 4.0f * (U(rng) - 0.5f), 14.0f + 30.0f * U(rng));
+        const glm::vec3 pz(9.0f + 3.0f * U(rng), y, 12.0f), cz(14.0f + 30.0f * U(rng), y + 4.0f * (U(rng) - 0.5f), 14.0f + 30.0f * U(rng));
+        const rk_im_hit a = rk_im_trace(px, cx, glm::vec3(1, 0, 0), g);
+        const rk_im_hit b = rk_im_trace(pz, cz, glm::vec3(0, 0, 1), g);
+        if (!a.valid || !b.valid) continue;
+        const glm::ivec3 expect(3, 1, 3);
+        // Only rays whose segment p..hit stays in the corner room count (the reference says so).
+        auto in_corner = [&](const rk_im_hit& h, glm::vec3 p) {
+            const glm::vec3 mid = 0.5f * (h.pos + p);
+            return rk_im_room_at(mid, g) == expect;
+        };
+        if (!in_corner(a, px) || !in_corner(b, pz)) continue;
+        ++pairs;
+        same += (a.room == expect && b.room == expect) ? 1 : 0;
+    }
+    std::printf("[im] corner room: %ld ray pairs, %ld report the same room (3, 1, 3) through both facades\n", pairs, same);
+    EXPECT_GT(pairs, 5000);
+    EXPECT_EQ(same, pairs);
+}
+
+TEST(InteriorMapping, AnalyticDerivativesAreContinuousAcrossSeams)
+{
+    std::mt19937 rng(11u);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const rk_im_grid g = make_grid(glm::vec3(2.0f, 3.0f, 2.5f), glm::vec3(0.3f, 0.0f, -0.2f));
+    // (1) Analytic vs central finite differences of the hit on the same (continuous) plane.
+    double max_rel = 0;
+    long n = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const glm::vec3 p(static_cast<float>(20.0 * U(rng)), static_cast<float>(30.0 * U(rng)), 10.0f);
+        const glm::vec3 cam(static_cast<float>(-40.0 + 100.0 * U(rng)), static_cast<float>(-20.0 + 70.0 * U(rng)),
+                            static_cast<float>(10.5 + 60.0 * U(rng)));
+        const float px = static_cast<float>(1e-3 + 0.05 * U(rng));
+        const glm::vec3 dx(px, 0.0f, 0.0f), dy(0.0f, px, 0.0f);
+        const rk_im_hit h = rk_im_trace_grad(p, cam, glm::vec3(0, 0, 1), dx, dy, g);
+        if (!h.valid) continue;
+        const int fam = h.family;
+        const double plane = dd(h.pos[fam]);
+        auto uv_at = [&](glm::dvec3 pp) {
+            const glm::dvec3 c(cam), dir = pp - c;
+            const double t = (plane - c[fam]) / dir[fam];
+            const glm::dvec3 x = c + t * dir;
+            const int ua = fam == 0 ? 2 : 0, vb = fam == 1 ? 2 : 1;
+            return glm::dvec2((x[ua] - dd(g.origin[ua])) / dd(g.room_size[ua]), (x[vb] - dd(g.origin[vb])) / dd(g.room_size[vb]));
+        };
+        const double hstep = 1e-3;
+        for (int k = 0; k < 2; ++k) {
+            const glm::dvec3 dp = k == 0 ? glm::dvec3(dx) : glm::dvec3(dy);
+            const glm::dvec2 fd = (uv_at(glm::dvec3(p) + hstep * dp) - uv_at(glm::dvec3(p) - hstep * dp)) / (2.0 * hstep);
+            const glm::vec2 an = k == 0 ? h.uv_dx : h.uv_dy;
+            const double scale = std::max(1e-6, std::max(std::abs(fd.x), std::abs(fd.y)));
+            max_rel = std::max(max_rel, std::max(std::abs(dd(an.x) - fd.x), std::abs(dd(an.y) - fd.y)) / scale);
+        }
+        ++n;
+    }
+    std::printf("[im] derivatives: %ld rays, max relative error vs finite differences %.3g\n", n, max_rel);
+    EXPECT_LT(max_rel, 1e-4);
+    // (2) Scanlines across the back walls seen straight through the facade (z = 9.8, on a z
+    // plane; cameras far in front): where neighbouring pixels see the back walls of two adjacent
+    // rooms, the naive dFdx of the room uv (neighbour difference) jumps by ~1; the analytic
+    // derivative does not change.
+    double naive_max = 0, analytic_jump = 0, analytic_scale = 0;
+    int seams = 0;
+    for (int c = 0; c < 20; ++c) {
+        const glm::vec3 cam(0.3f + 2.37f * static_cast<float>(c), 21.0f, 300.0f);
+        rk_im_hit prev;
+        bool have = false;
+        for (int s = 0; s < 600; ++s) {
+            const glm::vec3 p(cam.x - 3.0f + 0.01f * static_cast<float>(s), 20.0f, 9.8f);
+            const glm::vec3 dx(0.01f, 0.0f, 0.0f);
+            const rk_im_hit h = rk_im_trace_grad(p, cam, glm::vec3(0, 0, 1), dx, glm::vec3(0, 0.01f, 0), g);
+            if (have && h.family == prev.family && h.room.y == prev.room.y) {
+                naive_max = std::max(naive_max, std::abs(dd(h.uv.x) - dd(prev.uv.x)));
+                if (h.room.x != prev.room.x) {
+                    ++seams;
+                    analytic_jump = std::max(analytic_jump, std::abs(dd(h.uv_dx.x) - dd(prev.uv_dx.x)));
+                }
+                analytic_scale = std::max(analytic_scale, std::abs(dd(h.uv_dx.x)));
+            }
+            prev = h;
+            have = true;
+        }
+    }
+    std::printf("[im] scanlines over back walls: %d room seams; naive |d uv| max %.3f, analytic uv_dx max %.4g, its jump at seams %.3g\n",
+                seams, naive_max, analytic_scale, analytic_jump);
+    EXPECT_GT(seams, 3);
+    EXPECT_GT(naive_max, 0.9);
+    EXPECT_LT(analytic_jump, 1e-3 * analytic_scale + 1e-7);
+}
+
+TEST(InteriorMapping, FarFromOriginNeedsALocalOrigin)
+{
+    // A 30 x 60 x 30 building with 3 m rooms, translated by 1e5 in x and z. With the local-origin
+    // rule its object space is centred on the building (world_from_object = translate(1e5)), and
+    // the camera comes in through camera_to_object_space. Without it, object space = world space.
+    const glm::vec3 shift(1e5f, 0.0f, 1e5f);
+    const glm::mat4 world_from_object = glm::translate(glm::mat4(1.0f), shift);
+    const rk_im_grid local = make_grid(glm::vec3(3.0f), glm::vec3(-15.0f, 0.0f, -15.0f));
+    const rk_im_grid world = make_grid(glm::vec3(3.0f), local.origin + shift);
+    std::mt19937 rng(17u);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    long n = 0, diff_local = 0, diff_world = 0;
+    double uv_local = 0, uv_world = 0;
+    for (int i = 0; i < 100000; ++i) {
+        // p on the +z facade (z = 15 local) as the object-space mesh gives it (float), the
+        // camera 5..100 m away as the engine holds it (float world coordinates near 1e5). The
+        // reference traces exactly that geometry in double.
+        const glm::dvec3 p_obj(glm::vec3(glm::dvec3(-15.0 + 30.0 * U(rng), 60.0 * U(rng), 15.0)));
+        const glm::vec3 cam_world = glm::vec3(glm::dvec3(shift) + glm::dvec3(-80.0 + 160.0 * U(rng), -20.0 + 100.0 * U(rng), 20.0 + 95.0 * U(rng)));
+        const glm::dvec3 c_obj = glm::dvec3(cam_world) - glm::dvec3(shift);
+        double p3[3] = {p_obj.x, p_obj.y, p_obj.z}, c3[3] = {c_obj.x, c_obj.y, c_obj.z};
+        const double lo[3] = {-15, 0, -15}, hi[3] = {15, 60, 15};
+        const ref_im::Hit ref = ref_im::trace(p3, c3, 2, 1, lo, hi, ref_grid(local), nullptr, 0.0009765625);
+        // Local origin: p interpolated in object space (float), camera from world space (float).
+        const rk_im_hit a = rk_im_trace(glm::vec3(p_obj), camera_to_object_space(world_from_object, cam_world), glm::vec3(0, 0, 1), local);
+        // World space: p and camera both float world coordinates near 1e5.
+        const rk_im_hit b = rk_im_trace(glm::vec3(glm::dvec3(shift) + p_obj), cam_world, glm::vec3(0, 0, 1), world);
+        ++n;
+        auto room_eq = [&](const rk_im_hit& h) {
+            return h.family == ref.family && h.room.x == ref.room[0] && h.room.y == ref.room[1] && h.room.z == ref.room[2];
+        };
+        auto uv_err = [&](const rk_im_hit& h) {
+            return std::max(std::abs(dd(h.uv.x) - std::min(std::max(ref.uv[0], 0.0), 1.0)),
+                            std::abs(dd(h.uv.y) - std::min(std::max(ref.uv[1], 0.0), 1.0)));
+        };
+        if (!room_eq(a)) ++diff_local;
+        else uv_local = std::max(uv_local, uv_err(a));
+        if (!room_eq(b)) ++diff_world;
+        else uv_world = std::max(uv_world, uv_err(b));
+    }
+    std::printf("[im] building at 1e5: LOCAL origin: %ld / %ld rays differ in family/room, max uv err %.3g rooms; "
+                "WORLD coordinates: %ld / %ld differ, max uv err %.3g rooms\n",
+                diff_local, n, uv_local, diff_world, n, uv_world);
+    EXPECT_LE(diff_local, n / 2000);  // only hits within float reach of a room edge
+    EXPECT_LT(uv_local, 2e-4);
+    EXPECT_GT(uv_world, 10.0 * uv_local);
+}
+
+TEST(InteriorMapping, LitRoomsMonotoneAndFractionIsC)
+{
+    std::vector<glm::ivec3> rooms;
+    for (int y = 0; y < 50; ++y)
+        for (int z = -20; z < 20; ++z)
+            for (int x = -30; x < 30; ++x) rooms.emplace_back(x, y, z);  // 120,000 rooms
+    const double N = static_cast<double>(rooms.size());
+    long non_monotone = 0;
+    double worst_sigma = 0;
+    for (u32 seed : {0u, 1u, 12345u}) {
+        std::vector<char> lit_prev(rooms.size(), 0);
+        for (int ci = 0; ci <= 20; ++ci) {
+            const float c = static_cast<float>(ci) / 20.0f;
+            long lit = 0;
+            for (size_t i = 0; i < rooms.size(); ++i) {
+                const bool on = rk_im_room_lit(rooms[i], c, seed);
+                if (lit_prev[i] && !on) ++non_monotone;
+                lit_prev[i] = on ? 1 : 0;
+                lit += on ? 1 : 0;
+            }
+            const double frac = static_cast<double>(lit) / N;
+            EXPECT_DOUBLE_EQ(frac, lit_fraction(c, rooms, seed));
+            const double sigma = std::sqrt(std::max(dd(c) * (1.0 - dd(c)), 1e-12) / N);
+            worst_sigma = std::max(worst_sigma, std::abs(frac - dd(c)) / sigma);
+            EXPECT_LE(std::abs(frac - dd(c)), 5.0 * sigma + 1e-9) << "c " << c << " seed " << seed;
+        }
+    }
+    EXPECT_EQ(non_monotone, 0);
+    EXPECT_EQ(lit_fraction(0.0f, rooms, 1u), 0.0);
+    EXPECT_EQ(lit_fraction(1.0f, rooms, 1u), 1.0);
+    EXPECT_NEAR(lit_fraction(0.3f, glm::ivec3(0), glm::ivec3(60, 50, 40), 9u), 0.3, 5.0 * std::sqrt(0.21 / 120000.0));
+    // Face randoms: uniform and independent of the room random (correlation ~ 0).
+    double sxy = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+    for (const glm::ivec3& r : rooms) {
+        const double a = dd(rk_im_room_random(r, 4u)), b = dd(rk_im_face_random(r, 0, 1, 4u));
+        sx += a; sy += b; sxy += a * b; sxx += a * a; syy += b * b;
+    }
+    const double corr = (sxy / N - sx / N * sy / N) / std::sqrt((sxx / N - sx * sx / N / N) * (syy / N - sy * sy / N / N));
+    std::printf("[im] lit rooms: 120000 rooms x 21 c x 3 seeds, non-monotone %ld, worst |frac - c| %.2f sigma; "
+                "room/face random correlation %.4f, face mean %.4f\n",
+                non_monotone, worst_sigma, corr, sy / N);
+    EXPECT_LT(std::abs(corr), 0.02);
+    EXPECT_NEAR(sy / N, 0.5, 0.01);
+    // Different faces of a room differ.
+    long same = 0;
+    for (size_t i = 0; i < 10000; ++i)
+        same += rk_im_face_random(rooms[i], 0, 1, 4u) == rk_im_face_random(rooms[i], 0, -1, 4u) ? 1 : 0;
+    EXPECT_LT(same, 5);
+}
+
+TEST(InteriorMapping, RoomGridForBuildingPutsWallsBetweenWindows)
+{
+    struct B {
+        glm::vec3 lo, hi;
+        int floors, rx, rz;
+        float px, pz;
+    } cases[] = {{glm::vec3(-9.0f, 0.0f, -6.0f), glm::vec3(9.0f, 93.0f, 6.0f), 31, 6, 6, 1.5f, 1.0f},  // the thesis's 31 floors
+                 {glm::vec3(0.0f), glm::vec3(20.0f, 12.0f, 14.0f), 4, 3, 2, 2.1f, 1.9f},
+                 {glm::vec3(-3.3f, 1.0f, 2.0f), glm::vec3(10.1f, 41.0f, 9.7f), 10, 4, 5, 1.37f, 0.0f}};
+    for (const B& b : cases) {
+        const rk_im_grid g = room_grid_for_building(b.lo, b.hi, b.floors, b.rx, b.rz, b.px, b.pz);
+        for (int a = 0; a < 3; ++a) {
+            // Both facades on grid planes.
+            for (float f : {b.lo[a], b.hi[a]}) {
+                const double q = (dd(f) - dd(g.origin[a])) / dd(g.room_size[a]);
+                EXPECT_NEAR(q, std::round(q), 1e-5) << "axis " << a;
+            }
+        }
+        EXPECT_NEAR(dd(g.room_size.y), (dd(b.hi.y) - dd(b.lo.y)) / b.floors, 1e-5);
+        // Windows at the stretched pitch, centred in their bays: every wall lies halfway between
+        // two window centres, and no window centre lies on a wall.
+        for (int a : {0, 2}) {
+            const double w = dd(b.hi[a]) - dd(b.lo[a]);
+            const double pitch = a == 0 ? dd(b.px) : dd(b.pz);
+            if (pitch <= 0) {
+                EXPECT_NEAR(dd(g.room_size[a]), w / (a == 0 ? b.rx : b.rz), 1e-5);
+                continue;
+            }
+            const long bays = std::max(1L, std::lround(w / pitch));
+            const double bay = w / static_cast<double>(bays);
+            for (long j = 0; j < bays; ++j) {
+                const double centre = dd(b.lo[a]) + (static_cast<double>(j) + 0.5) * bay;
+                const double q = (centre - dd(g.origin[a])) / dd(g.room_size[a]);
+                const double frac = q - std::floor(q);
+                // distance from the window centre to the nearest wall, in bays: >= 0.5
+                EXPECT_GE(std::min(frac, 1.0 - frac) * dd(g.room_size[a]) / bay, 0.5 - 1e-4);
+            }
+            for (double wq = 0; wq * dd(g.room_size[a]) <= w + 1e-4; wq += 1.0) {
+                const double wall = dd(g.origin[a]) + wq * dd(g.room_size[a]);
+                const double in_bays = (wall - dd(b.lo[a])) / bay;
+                EXPECT_NEAR(in_bays, std::round(in_bays), 1e-4);  // a bay boundary = halfway between windows
+            }
+            std::printf("[im] room grid axis %d: facade %.2f, pitch %.2f -> %ld bays, room %.4f (%ld rooms, asked %d)\n", a, w,
+                        pitch, bays, dd(g.room_size[a]), std::lround(w / dd(g.room_size[a])), a == 0 ? b.rx : b.rz);
+        }
+    }
+}
+
+TEST(InteriorMapping, CameraToObjectSpaceAndRoomAt)
+{
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(1200.5f, -3.25f, 845.0f));
+    m = glm::rotate(m, 0.7f, glm::vec3(0, 1, 0));
+    m = glm::scale(m, glm::vec3(2.0f, 1.5f, 0.5f));
+    const glm::vec3 cam_world(1300.0f, 40.0f, 700.0f);
+    const glm::vec3 c = camera_to_object_space(m, cam_world);
+    const glm::dvec4 back = glm::dmat4(m) * glm::dvec4(glm::dvec3(c), 1.0);
+    EXPECT_NEAR(back.x, 1300.0, 1e-3);
+    EXPECT_NEAR(back.y, 40.0, 1e-4);
+    EXPECT_NEAR(back.z, 700.0, 1e-3);
+    EXPECT_EQ(camera_to_object_space(glm::mat4(0.0f), cam_world), cam_world);  // singular: unchanged
+    const rk_im_grid g = make_grid(glm::vec3(2.0f, 3.0f, 4.0f), glm::vec3(1.0f, 0.0f, -1.0f));
+    EXPECT_EQ(room_at(glm::vec3(2.9f, 3.0f, -1.0f), g), glm::ivec3(0, 1, 0));
+    EXPECT_EQ(room_at(glm::vec3(0.9f, -0.1f, -5.5f), g), glm::ivec3(-1, -1, -2));
+}
+
+TEST(InteriorMapping, AdversarialInputsNeverProduceNonFinite)
+{
+    const float specials[] = {0.0f, -0.0f, 1e-45f, -1e-40f, 1.17549435e-38f, 1.0f, -1.0f, 0.5f, 1e-20f, 1e20f, -1e20f, 1e30f,
+                              -3.4028235e38f, 3.4028235e38f, 7.0f, -13.0f};
+    std::mt19937 rng(1u);
+    long n = 0, bad = 0;
+    const int S = sizeof(specials) / sizeof(specials[0]);
+    auto pick = [&]() { return specials[rng() % static_cast<u32>(S)]; };
+    for (int i = 0; i < 200000; ++i) {
+        const glm::vec3 p(pick(), pick(), pick()), cam(pick(), pick(), pick()), nrm(pick(), pick(), pick());
+        const rk_im_grid g = make_grid(glm::vec3(pick(), pick(), pick()), glm::vec3(pick(), pick(), pick()));
+        const glm::vec3 dx(pick(), pick(), pick()), dy(pick(), pick(), pick());
+        const rk_im_hit a = rk_im_trace_grad(p, cam, nrm, dx, dy, g);
+        const rk_im_hit b = rk_im_trace_varying_grad(p, cam, nrm, dx, dy, g, glm::vec3(pick(), pick(), pick()), static_cast<u32>(rng()));
+        bad += finite_hit(a) ? 0 : 1;
+        bad += finite_hit(b) ? 0 : 1;
+        bad += (a.valid && !(a.t > 1.0f)) ? 1 : 0;
+        bad += (a.uv.x < 0.0f || a.uv.x >= 1.0f || a.uv.y < 0.0f || a.uv.y >= 1.0f) ? 1 : 0;
+        n += 2;
+    }
+    std::printf("[im] adversarial: %ld traces, non-finite or out-of-range %ld\n", n, bad);
+    EXPECT_EQ(bad, 0);
+}
