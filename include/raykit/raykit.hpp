@@ -7,6 +7,8 @@
 #include "raykit/envmap_correction.hpp"
 #include "raykit/exposure.hpp"
 #include "raykit/fresnel.hpp"
+#include "raykit/hash.hpp"
+#include "raykit/interior_mapping.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/tonemap.hpp"
