@@ -849,3 +849,120 @@ TEST(InteriorMapping, AdversarialInputsNeverProduceNonFinite)
     std::printf("[im] adversarial: %ld traces, non-finite or out-of-range %ld\n", n, bad);
     EXPECT_EQ(bad, 0);
 }
+
+TEST(InteriorMapping, VectorisedWallOffsetsMatchTheScalarDefinition)
+{
+    // The traces compute the wall offsets of the three axes at once (rk_im_detail_hash3 and
+    // rk_im_detail_wall_offset3); they must be bit-identical to rk_hash_u32 / rk_im_wall_offset,
+    // the documented definition, and rk_im_room_at_varying to its scalar rule
+    // (m = floor(q), m - 1 when q < m + offset(m)).
+    std::mt19937 rng(23u);
+    long n = 0, bad_hash = 0, bad_offset = 0, bad_room = 0;
+    const float jitters[] = {0.0f, 0.25f, 0.5f, 1.0f, 1.5f, -0.5f};
+    for (int i = 0; i < 100000; ++i) {
+        const u32 seed = static_cast<u32>(rng());
+        const glm::uvec3 x(static_cast<u32>(rng()), static_cast<u32>(rng()), static_cast<u32>(rng()));
+        const glm::uvec3 h = rk_im_detail_hash3(x);
+        for (int a = 0; a < 3; ++a) bad_hash += h[a] == rk_hash_u32(x[a]) ? 0 : 1;
+        const glm::ivec3 k(static_cast<int>(rng() % 2001u) - 1000, static_cast<int>(rng()) , static_cast<int>(rng() % 7u) - 3);
+        const glm::vec3 jit(jitters[rng() % 6u], jitters[rng() % 6u], static_cast<float>(rng() % 1000u) / 999.0f);
+        const glm::vec3 off = rk_im_detail_wall_offset3(glm::vec3(k), rk_im_detail_wall_keys(seed), glm::clamp(jit, glm::vec3(0.0f), glm::vec3(1.0f)));
+        for (int a = 0; a < 3; ++a) {
+            if (std::abs(k[a]) >= (1 << 24)) continue;  // k must be exact as a float
+            bad_offset += off[a] == rk_im_wall_offset(a, k[a], jit[a], seed) ? 0 : 1;
+        }
+        rk_im_grid g = make_grid(glm::vec3(0.5f + 4.0f * static_cast<float>(rng() % 1000u) / 1000.0f, 3.0f, 2.5f), glm::vec3(-3.0f, 0.5f, 7.0f));
+        const glm::vec3 p(static_cast<float>(rng() % 20000u) * 0.01f - 100.0f, static_cast<float>(rng() % 20000u) * 0.01f - 100.0f,
+                          static_cast<float>(rng() % 20000u) * 0.01f - 100.0f);
+        const glm::vec3 q = rk_im_grid_coord(p, g);
+        glm::ivec3 want;
+        for (int a = 0; a < 3; ++a) {
+            const float m = std::floor(q[a]);
+            const int mi = static_cast<int>(m);
+            want[a] = q[a] < m + rk_im_wall_offset(a, mi, jit[a], seed) ? mi - 1 : mi;
+        }
+        bad_room += rk_im_room_at_varying(p, g, jit, seed) == want ? 0 : 1;
+        ++n;
+    }
+    std::printf("[im] vectorised wall offsets: %ld cases, hash mismatches %ld, offset mismatches %ld, room_at_varying mismatches %ld\n", n,
+                bad_hash, bad_offset, bad_room);
+    EXPECT_EQ(bad_hash, 0);
+    EXPECT_EQ(bad_offset, 0);
+    EXPECT_EQ(bad_room, 0);
+}
+
+TEST(InteriorMapping, TraceWithoutDerivativesIsTheGradTrace)
+{
+    // rk_im_trace / rk_im_trace_varying skip the derivative work; every other field must be
+    // bit-identical to the _grad traces (regular and displaced walls, every kind of test ray).
+    std::mt19937 rng(29u);
+    long n = 0, differ = 0;
+    const Kind kinds[] = {Kind::random, Kind::on_grid, Kind::axis_parallel, Kind::grazing, Kind::close_camera, Kind::denormal};
+    auto same = [](const rk_im_hit& a, const rk_im_hit& b) {
+        return a.t == b.t && a.depth == b.depth && a.family == b.family && a.side == b.side && a.room == b.room && a.uv == b.uv &&
+               a.pos == b.pos && a.valid == b.valid && a.uv_dx == glm::vec2(0.0f) && a.uv_dy == glm::vec2(0.0f);
+    };
+    for (int i = 0; i < 60000; ++i) {
+        const Ray r = make_ray(rng, kinds[i % 6]);
+        glm::vec3 nrm(0.0f);
+        nrm[r.axis] = static_cast<float>(r.sign);
+        const glm::vec3 dx(0.01f, -0.002f, 0.003f), dy(0.001f, 0.01f, -0.004f), jit(0.3f, 0.6f, 0.9f);
+        differ += same(rk_im_trace(r.p, r.cam, nrm, r.g), rk_im_trace_grad(r.p, r.cam, nrm, dx, dy, r.g)) ? 0 : 1;
+        differ += same(rk_im_trace_varying(r.p, r.cam, nrm, r.g, jit, 5u), rk_im_trace_varying_grad(r.p, r.cam, nrm, dx, dy, r.g, jit, 5u))
+                      ? 0
+                      : 1;
+        n += 2;
+    }
+    std::printf("[im] trace without derivatives: %ld traces, %ld differ from the _grad trace\n", n, differ);
+    EXPECT_EQ(differ, 0);
+}
+
+TEST(InteriorMapping, DerivativesOfNearlyParallelHitsStayFinite)
+{
+    // The chosen family's direction component can be as small as 2^-50 of the largest one (below
+    // that it counts as parallel) while dp_dx is huge: d uv = t (dq - (e / e_i) dq_i) must not
+    // overflow into Inf - Inf. Such a family is chosen only when its next plane is at distance 0
+    // (grid coordinates beyond 2^24, where plane + 1 rounds to the plane: p far outside the exact
+    // domain), as in this case found by the adversarial sweep:
+    const rk_im_grid g0 = make_grid(glm::vec3(0.5f, 1.4013e-45f, -1e20f), glm::vec3(1e-20f, 1e30f, 0.0f));
+    const rk_im_hit h0 = rk_im_trace_grad(glm::vec3(-0.0f, 1.17549435e-38f, 1e30f), glm::vec3(1e-20f, 1.4013e-45f, 1e30f),
+                                          glm::vec3(1e30f, -9.99995e-41f, 3.4028235e38f), glm::vec3(-0.0f, 1e20f, -3.4028235e38f),
+                                          glm::vec3(-9.99995e-41f, -0.0f, 3.4028235e38f), g0);
+    EXPECT_TRUE(finite_hit(h0));
+    // A sweep: the ray mostly along -x (facade normal +x), its component along `fam` (y or z) a
+    // ratio smaller, the grid origin's fam coordinate far away so that the fam plane is at
+    // distance 0.
+    const float scales[] = {1e-19f, 1e-17f, 1e-14f, 1e-10f, 1.0f, 1e10f, 1e15f};
+    const float ratios[] = {1.0f, 1e-6f, 1e-12f, 1e-15f, 9e-16f};
+    const float dps[] = {0.0f, 1.0f, 1e20f, -3.4028235e38f, 3.4028235e38f};
+    const float far[] = {0.7f, 1e12f, -1e12f, 1e30f, -1e30f};
+    long n = 0, bad = 0, tiny_family = 0;
+    for (float s : scales)
+        for (float ra : ratios)
+            for (float dp : dps)
+                for (float fc : far)
+                    for (int fam = 1; fam < 3; ++fam) {
+                        const glm::vec3 p(0.0f);  // (so that cam - p keeps the tiny component)
+                        glm::vec3 origin(0.0f);
+                        origin[fam] = fc;
+                        const rk_im_grid g = make_grid(glm::vec3(0.5f, 1e-4f, 1e6f), origin);
+                        glm::vec3 dir(s * 0.5f, 0.0f, 0.0f);
+                        dir[fam] = -s * ra * (fam == 1 ? 1e-4f : 1e6f);
+                        const glm::vec3 cam = p + dir;
+                        const glm::vec3 nx(1.0f, 0.0f, 0.0f);
+                        const rk_im_hit h = rk_im_trace_grad(p, cam, nx, glm::vec3(dp, -dp, dp), glm::vec3(-dp, dp, dp), g);
+                        const rk_im_hit hv =
+                            rk_im_trace_varying_grad(p, cam, nx, glm::vec3(dp, dp, -dp), glm::vec3(dp, -dp, dp), g, glm::vec3(0.7f), 3u);
+                        for (const rk_im_hit* x : {&h, &hv}) {
+                            ++n;
+                            tiny_family += (x->valid && x->family == fam && ra < 1e-10f) ? 1 : 0;
+                            const bool in_range = std::abs(x->uv_dx.x) <= 1e30f && std::abs(x->uv_dx.y) <= 1e30f &&
+                                                  std::abs(x->uv_dy.x) <= 1e30f && std::abs(x->uv_dy.y) <= 1e30f;
+                            if (!finite_hit(*x) || !in_range || (x->valid && !(x->t > 1.0f))) ++bad;
+                        }
+                    }
+    std::printf("[im] nearly parallel hits with huge dp: %ld traces (%ld hit the family of a component < 1e-10 of the largest), "
+                "non-finite %ld\n", n, tiny_family, bad);
+    EXPECT_GT(tiny_family, 0);
+    EXPECT_EQ(bad, 0);
+}

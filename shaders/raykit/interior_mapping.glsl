@@ -26,7 +26,7 @@
 //  * Rays parallel to a family (a direction component that is 0, denormal, or below 2^-50 of the
 //    largest component): that family's ray distance is the finite sentinel RK_IM_T_SENTINEL, so
 //    it is never chosen (some other axis always has a plane within 1 + RK_IM_NUDGE room units).
-//    No field is ever Inf or NaN, for any finite input (inputs are clamped, see the domains).
+//    No field is ever Inf or NaN, for any finite input (see the domains).
 //  * Camera on the inner side of the surface (dot(n, p - cam) >= 0), a zero normal (max |n_i| <
 //    1e-30), or a camera within 1e-20 room units of p: valid = false, and the documented defaults
 //    t = 1, depth = 0, family = 1, side = -1, room = rk_im_room_at(p), uv = uv_dx = uv_dy = 0,
@@ -59,16 +59,29 @@
 // Feature macros:
 //   RK_IM_VARYING_WALLS  0 (default): rk_im_trace_auto() is rk_im_trace_grad() (regular grid,
 //       jitter and seed unused: zero cost). 1: rk_im_trace_auto() is rk_im_trace_varying_grad()
-//       (walls displaced per wall index; 3 single-word hashes per axis, ~30 integer ops more).
+//       (walls displaced per wall index; 12 single-word hashes as four uvec3 hashes, 3
+//       divisions: about 80 SPIR-V instructions more).
 //       rk_im_trace_varying() and rk_im_trace_grad() themselves are always available.
 //   RK_IM_NUDGE  the facade-nudge distance in room units (default 2^-10). Larger values skip
 //       planes further behind a facade; it must exceed the interpolation jitter of p in room units
 //       (a few ulps of |q|) and stay far below 1.
 //
-// Domains (inputs are clamped into them, so no finite input produces Inf/NaN): |p|, |cam|,
-// |origin| components <= 1e15; room_size components in [1e-4, 1e6] (abs taken); grid coordinates
-// clamped to +-2^30 (exact plane/room selection needs |q| < 2^22 rooms); dp_dx/dp_dy components
-// clamped to +-1e10 room units; derivative outputs clamped to +-1e30.
+// Domains: |p|, |cam|, |origin| components <= 1e15 (RK_IM_COORD_MAX); room_size components in
+// [1e-4, 1e6] (abs taken, clamped); exact plane/room selection needs |q| < 2^22 rooms. Outside the
+// domain every field stays finite (no Inf/NaN for any finite input), with the fewest clamps that
+// guarantee it, each protecting all later uses: room size (clamped), grid coordinates (clamped to
+// +-2^30, which also absorbs an overflow of p - origin), p - cam (clamped to +-1e18, so the
+// direction, its length and the facing test cannot overflow), the normal's scale (1 / max|n_i|,
+// clamped to [1e-30, 1e30]), dp_dx/dp_dy in room units (clamped to +-1e10), derivative outputs
+// (clamped to +-1e30). Within the domain none of these clamps changes a result.
+//
+// COST: the trace is straight-line vec3 code with selects, no branches. SPIR-V instructions in
+// function bodies (glslangValidator -G, spirv-opt -O; the counting rule of
+// scripts/bench_interior.sh) of a fragment shader that calls the trace and writes uv, uv_dx,
+// uv_dy, family, side, room and valid: rk_im_trace_grad 166 (107 ALU), rk_im_trace 121,
+// rk_im_trace_varying_grad 249 (before the vectorised rewrite: 293 / 204 / 571, with 23 to 26
+// conditional branches). Divisions: rk_im_trace_grad 10 scalar (grid coordinates 3, the room-size
+// reciprocal 3, the direction reciprocal per axis 3, normal scale 1), was 32.
 //
 // @rk-es 310
 // @rk-variants RK_IM_VARYING_WALLS=0 | RK_IM_VARYING_WALLS=1 | RK_IM_VARYING_WALLS=1 RK_IM_NUDGE=0.001f
@@ -85,16 +98,20 @@
 #define RK_IM_NUDGE 0.0009765625f
 #endif
 
-// Per-family ray distance (room units) of a family the ray runs parallel to.
+// Per-family ray distance of a family the ray runs parallel to (never the nearest: see above).
 #define RK_IM_T_SENTINEL 1e30f
-// |normalised direction component| below this (2^-50) counts as parallel.
+// |direction component| below this (2^-50) times the largest component counts as parallel.
 #define RK_IM_PARALLEL 8.8817841970012523e-16f
 // Camera closer than this to p (room units, max-norm): degenerate ray, valid = false.
 #define RK_IM_DIR_MIN 1e-20f
+// The documented coordinate domain (|p|, |cam|, |origin| components), also used by the other
+// interior files.
 #define RK_IM_COORD_MAX 1e15f
 #define RK_IM_GRID_MAX 1073741824.0f
 #define RK_IM_ROOM_MIN 1e-4f
 #define RK_IM_ROOM_MAX 1e6f
+// p - cam is clamped to this per component (2 RK_IM_COORD_MAX fits: no effect in the domain).
+#define RK_IM_DIFF_MAX 1e18f
 #define RK_IM_DQ_MAX 1e10f
 #define RK_IM_DERIV_MAX 1e30f
 // Largest float below 1: uv is clamped to [0, RK_IM_UV_MAX].
@@ -125,15 +142,14 @@ struct rk_im_hit {
 };
 
 /// rk_im_grid_coord: grid (room-unit) coordinates of an object-space point, (x - origin) /
-/// room_size with the documented clamps (|x| <= 1e15, room_size in [1e-4, 1e6], result within
-/// +-2^30). Exact up to one rounding of the subtraction and one of the division. Cost: 3 sub,
-/// 3 div, clamps.
+/// room_size, room_size taken as clamp(|room_size|, 1e-4, 1e6) and the result clamped to
+/// +-2^30 (x - origin may overflow to +-Inf only for components beyond 1.7e38, far outside the
+/// domain; the clamp maps that to +-2^30, never NaN). Exact up to one rounding of the subtraction
+/// and one of the division. Cost: 3 sub, 3 div, 1 abs + 2 clamps (vec3).
 RK_INLINE vec3 rk_im_grid_coord(vec3 x, rk_im_grid g)
 {
     vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
-    vec3 o = clamp(g.origin, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    vec3 xc = clamp(x, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    return clamp((xc - o) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
+    return clamp((x - g.origin) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
 }
 
 /// rk_im_room_at: the grid cell containing the object-space point p: floor of its grid
@@ -172,157 +188,196 @@ RK_INLINE bool rk_im_room_lit(ivec3 room, float c, uint seed) { return rk_im_roo
 
 /// rk_im_wall_offset: the displacement, in room units in [0, 1), of wall k of axis (0 x, 1 y,
 /// 2 z) in the varying-walls model: clamp(jitter, 0, 1) * rk_u32_to_unit(rk_hash_u32(uint(k) ^
-/// key(axis, seed))). A function of the wall index only, so each wall plane moves as a whole.
-/// Exact (bit-identical on CPU/GPU). Cost: 2 rk_hash_u32 (the key is shared between calls after
-/// common-subexpression elimination).
+/// key(axis, seed))), key(axis, seed) = rk_hash_u32(seed + axis * 2654435769u). A function of the
+/// wall index only, so each wall plane moves as a whole. Exact (bit-identical on CPU/GPU). Cost:
+/// 2 rk_hash_u32 (the key is shared between calls after common-subexpression elimination).
 RK_INLINE float rk_im_wall_offset(int axis, int k, float jitter, uint seed)
 {
     uint key = rk_hash_u32(seed + uint(axis) * 2654435769u);
     return clamp(jitter, 0.0f, 1.0f) * rk_u32_to_unit(rk_hash_u32(uint(k) ^ key));
 }
 
+// ---- implementation details (not part of the API) ----------------------------------------------
+
+/// rk_hash_u32 on each component (bit-identical to it; tests/test_interior_mapping.cpp checks).
+RK_INLINE uvec3 rk_im_detail_hash3(uvec3 x)
+{
+    uvec3 state = x * 747796405u + 2891336453u;
+    uvec3 word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+/// The three per-axis keys of rk_im_wall_offset: rk_hash_u32(seed + axis * 2654435769u)
+/// (2 * 2654435769 mod 2^32 = 1013904242).
+RK_INLINE uvec3 rk_im_detail_wall_keys(uint seed)
+{
+    return rk_im_detail_hash3(uvec3(seed) + uvec3(0u, 2654435769u, 1013904242u));
+}
+
+/// rk_im_wall_offset of wall k_i of axis i, for the three axes at once; k holds integers
+/// (|k| < 2^31), jit the clamped jitter. Bit-identical to three rk_im_wall_offset calls.
+RK_INLINE vec3 rk_im_detail_wall_offset3(vec3 k, uvec3 key, vec3 jit)
+{
+    uvec3 h = rk_im_detail_hash3(uvec3(ivec3(k)) ^ key);
+    return jit * (vec3(h >> 8u) * 5.9604644775390625e-8f);
+}
+
 /// rk_im_room_at_varying: the cell containing p when walls are displaced (rk_im_trace_varying's
 /// model): per axis m = floor(q), then m - 1 if q lies before wall m (q < m + delta(m)).
-/// Cost: rk_im_grid_coord + 3 rk_im_wall_offset.
+/// Cost: rk_im_grid_coord + 6 single-word hashes (3 keys, 3 walls; vec3 integer ops).
 RK_INLINE ivec3 rk_im_room_at_varying(vec3 p, rk_im_grid g, vec3 jitter, uint seed)
 {
     vec3 q = rk_im_grid_coord(p, g);
     vec3 m = floor(q);
-    ivec3 r = ivec3(m);
-    if (q.x < m.x + rk_im_wall_offset(0, r.x, jitter.x, seed)) r.x -= 1;
-    if (q.y < m.y + rk_im_wall_offset(1, r.y, jitter.y, seed)) r.y -= 1;
-    if (q.z < m.z + rk_im_wall_offset(2, r.z, jitter.z, seed)) r.z -= 1;
+    vec3 wm = m + rk_im_detail_wall_offset3(m, rk_im_detail_wall_keys(seed), clamp(jitter, vec3(0.0f), vec3(1.0f)));
+    // q < wm  <=>  not (q >= wm) = 1 - step(wm, q)
+    return ivec3(m - (vec3(1.0f) - step(wm, q)));
+}
+
+/// The ray of one trace, shared by the regular and the varying-walls traces (all vec3 work).
+struct rk_im_detail_ray {
+    vec3 rs;     // room size, clamp(|room_size|, RK_IM_ROOM_MIN, RK_IM_ROOM_MAX)
+    vec3 irs;    // 1 / rs
+    vec3 q;      // grid coordinates of p (rk_im_grid_coord)
+    vec3 qn;     // q' = q nudged past the facade (q itself when invalid)
+    vec3 v;      // p - cam in object units, clamped to +-RK_IM_DIFF_MAX
+    vec3 e;      // v / rs: the ray in grid units, unnormalised: q(t) = q + (t - 1) e
+    vec3 ie;     // 1 / e per axis (1 for components below 2^-50 RK_IM_DIR_MIN), |ie| <= 1.2e35
+    bvec3 np;    // non-parallel components: |e_i| >= 2^-50 max(max_j |e_j|, RK_IM_DIR_MIN)
+    vec3 up;     // 1 where the ray counts as travelling toward +axis (e_i >= -that bound), else 0;
+                 // all 1 when invalid
+    vec3 s;      // 2 up - 1
+    bool valid;
+};
+
+/// Common setup: clamps, grid coordinates, direction, validity, travel direction and the nudge.
+/// When invalid, up = 1 and q' = q, so that both axis rules return the documented default room
+/// (rk_im_room_at, rk_im_room_at_varying) with no extra work.
+RK_INLINE rk_im_detail_ray rk_im_detail_setup(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
+{
+    rk_im_detail_ray r;
+    r.rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
+    r.irs = vec3(1.0f) / r.rs;
+    r.q = rk_im_grid_coord(p, g);
+    r.v = clamp(p - cam, vec3(-RK_IM_DIFF_MAX), vec3(RK_IM_DIFF_MAX));
+    r.e = r.v * r.irs;
+    vec3 ae = abs(r.e);
+    float emax = max(max(ae.x, ae.y), ae.z);
+    float thr = RK_IM_PARALLEL * max(emax, RK_IM_DIR_MIN);
+    r.np = bvec3(step(vec3(thr), ae));
+    // The divisor does not wait for thr: components below 2^-50 RK_IM_DIR_MIN (always parallel)
+    // are replaced by 1; the others between that and thr are parallel too and get the sentinel.
+    r.ie = vec3(1.0f) / mix(vec3(1.0f), r.e, bvec3(step(vec3(RK_IM_PARALLEL * RK_IM_DIR_MIN), ae)));
+    float nmax = max(max(abs(n.x), abs(n.y)), abs(n.z));
+    // Only the sign of dot(n, v) matters: n scaled by 1 / nmax (clamped so that the scale is a
+    // normal float and the dot cannot overflow).
+    vec3 nn = n * (1.0f / clamp(nmax, 1e-30f, 1e30f));
+    bool facing = dot(nn, r.v) < 0.0f;  // (a separate bool: && of plain values needs no branch)
+    r.valid = nmax >= 1e-30f && emax >= RK_IM_DIR_MIN && facing;
+    vec3 up_ray = step(vec3(-thr), r.e);
+    vec3 ones = vec3(1.0f);
+    r.up = r.valid ? up_ray : ones;
+    r.s = 2.0f * r.up - vec3(1.0f);
+    // Nudge on every axis where the ray moves into the building: n_i s_i < -1e-6 max|n|.
+    vec3 inward = vec3(1.0f) - step(vec3(-1e-6f * nmax), n * r.s);
+    vec3 qn = r.q + (RK_IM_NUDGE * r.s) * inward;
+    r.qn = r.valid ? qn : r.q;
     return r;
 }
 
-// ---- implementation details (not part of the API) ----------------------------------------------
-
-/// Whether the ray counts as travelling toward +axis: d >= -2^-50, so a parallel component (0,
-/// -0, denormal, flushed or not) always counts as +, identically on every backend.
-RK_INLINE bool rk_im_detail_up(float d) { return d >= -RK_IM_PARALLEL; }
-
-/// Common setup: clamped inputs, grid coordinates q, the nudged q', the direction d normalised
-/// to max |d_i| = 1 (grid units), its scale D (so p - cam = D d room_size) and validity.
-RK_INLINE void rk_im_detail_setup(vec3 p, vec3 cam, vec3 n, rk_im_grid g, RK_OUT(vec3) q, RK_OUT(vec3) qn,
-                                  RK_OUT(vec3) d, RK_OUT(float) dscale, RK_OUT(bool) valid)
+/// Picks the nearest family and fills the hit. room, plane, lo (the room's lower wall) and
+/// inv_width (1 / the room's width) per axis, in grid units. with_grad is a compile-time constant
+/// at every call: false drops the derivative work.
+RK_INLINE rk_im_hit rk_im_detail_finish(vec3 p, rk_im_grid g, vec3 dp_dx, vec3 dp_dy, bool with_grad,
+                                        rk_im_detail_ray r, vec3 room, vec3 plane, vec3 lo, vec3 inv_width)
 {
-    vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
-    vec3 pc = clamp(p, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    vec3 cc = clamp(cam, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    q = rk_im_grid_coord(p, g);
-    vec3 e = (pc - cc) / rs;
-    float dmax = max(max(abs(e.x), abs(e.y)), abs(e.z));
-    dscale = dmax;
-    d = e / max(dmax, RK_IM_DIR_MIN);
-    float nmax = max(max(abs(n.x), abs(n.y)), abs(n.z));
-    vec3 nn = n / max(nmax, 1e-30f);
-    valid = nmax >= 1e-30f && dmax >= RK_IM_DIR_MIN && dot(nn, pc - cc) < 0.0f;
-    vec3 s = vec3(rk_im_detail_up(d.x) ? 1.0f : -1.0f, rk_im_detail_up(d.y) ? 1.0f : -1.0f,
-                  rk_im_detail_up(d.z) ? 1.0f : -1.0f);
-    vec3 inward = vec3(nn.x * s.x < -1e-6f ? 1.0f : 0.0f, nn.y * s.y < -1e-6f ? 1.0f : 0.0f,
-                       nn.z * s.z < -1e-6f ? 1.0f : 0.0f);
-    qn = q + (RK_IM_NUDGE * s) * inward;
-}
-
-/// Regular grid, one axis: the cell the ray is in after q' and the next plane strictly beyond q'.
-RK_INLINE void rk_im_detail_axis(float qn, float d, RK_OUT(float) room, RK_OUT(float) plane, RK_OUT(float) lo,
-                                 RK_OUT(float) width)
-{
-    bool up = rk_im_detail_up(d);
-    room = up ? floor(qn) : ceil(qn) - 1.0f;
-    plane = up ? room + 1.0f : room;
-    lo = room;
-    width = 1.0f;
-}
-
-/// Displaced walls, one axis: the two-candidate rule {m, m + s}, m = floor(q') (exact for
-/// offsets in [0, 1)); lo/width: the displaced room's lower wall and width along the axis.
-RK_INLINE void rk_im_detail_axis_varying(float qn, float d, int axis, float jitter, uint seed, RK_OUT(float) room,
-                                         RK_OUT(float) plane, RK_OUT(float) lo, RK_OUT(float) width)
-{
-    float m = floor(qn);
-    int mi = int(m);
-    float w_prev = (m - 1.0f) + rk_im_wall_offset(axis, mi - 1, jitter, seed);
-    float w_m = m + rk_im_wall_offset(axis, mi, jitter, seed);
-    float w_next = (m + 1.0f) + rk_im_wall_offset(axis, mi + 1, jitter, seed);
-    bool up = rk_im_detail_up(d);
-    float s = up ? 1.0f : -1.0f;
-    bool take_m = (w_m - qn) * s > 0.0f;
-    bool lower = take_m == up;  // the ray is in cell m - 1
-    room = lower ? m - 1.0f : m;
-    plane = take_m ? w_m : (up ? w_next : w_prev);
-    lo = lower ? w_prev : w_m;
-    float hi = lower ? w_m : w_next;
-    width = max(hi - lo, 1.0e-6f);
-}
-
-/// Picks the nearest family and fills the hit. All per-axis inputs in grid units.
-RK_INLINE rk_im_hit rk_im_detail_finish(vec3 p, vec3 cam, rk_im_grid g, vec3 dp_dx, vec3 dp_dy, vec3 q, vec3 d,
-                                        float dscale, bool valid, vec3 room, vec3 plane, vec3 lo, vec3 width)
-{
-    vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
-    vec3 o = clamp(g.origin, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    vec3 pc = clamp(p, vec3(-RK_IM_COORD_MAX), vec3(RK_IM_COORD_MAX));
-    RK_UNUSED(cam);
-    vec3 delta = plane - q;
-    vec3 f = vec3(abs(d.x) >= RK_IM_PARALLEL ? max(delta.x / d.x, 0.0f) : RK_IM_T_SENTINEL,
-                  abs(d.y) >= RK_IM_PARALLEL ? max(delta.y / d.y, 0.0f) : RK_IM_T_SENTINEL,
-                  abs(d.z) >= RK_IM_PARALLEL ? max(delta.z / d.z, 0.0f) : RK_IM_T_SENTINEL);
+    // Ray fraction beyond p (t - 1) to each family's next plane; the sentinel when parallel. No
+    // max(., 0) needed: the plane lies beyond q' (so beyond q) along s, and a non-parallel e has
+    // the sign s, so the product is >= 0 (or -0).
+    vec3 f = mix(vec3(RK_IM_T_SENTINEL), (plane - r.q) * r.ie, r.np);
     // Nearest family; ties go to the x wall over the z wall over the floor/ceiling (thesis).
-    int fam = 0;
-    float fd = f.x;
-    if (f.z < fd) {
-        fam = 2;
-        fd = f.z;
+    bool bz = f.z < f.x;
+    float fxz = min(f.x, f.z);
+    bool by = f.y < fxz;
+    float fd = min(fxz, f.y);
+    bool b0 = !(bz || by);
+    bvec2 sel_uv = bvec2(b0, by);  // uv axes: family 0 (z, y), 1 (x, z), 2 (x, y)
+    int fam_xz = bz ? 2 : 0;
+    int fam = by ? 1 : fam_xz;
+    float ief = mix(mix(r.ie.x, r.ie.z, bz), r.ie.y, by);  // 1 / e of the chosen family (non-parallel)
+    int side = ief >= 0.0f ? 1 : -1;
+    float t = max(1.0f + fd, RK_IM_T_MIN);
+    vec3 dv = fd * r.v;  // p -> hit, object units
+    float depth = length(dv);
+    vec3 pos = mix(p + dv, g.origin + plane * r.rs, bvec3(b0, by, bz && !by));
+    vec3 w = (r.q + fd * r.e - lo) * inv_width;
+    vec2 uv = clamp(mix(vec2(w.x, w.y), vec2(w.z, w.z), sel_uv), vec2(0.0f), vec2(RK_IM_UV_MAX));
+    vec2 ux = vec2(0.0f);
+    vec2 uy = vec2(0.0f);
+    if (with_grad) {
+        // d(hit) = t (dq - (e / e_i) dq_i) on the chosen plane i (grid units), times inv_width.
+        // |e / e_i| <= 2^50 (e_i is not parallel) and |dq| <= 1e10: no overflow before t.
+        vec3 dqx = clamp(dp_dx * r.irs, vec3(-RK_IM_DQ_MAX), vec3(RK_IM_DQ_MAX));
+        vec3 dqy = clamp(dp_dy * r.irs, vec3(-RK_IM_DQ_MAX), vec3(RK_IM_DQ_MAX));
+        vec2 ratio = mix(vec2(r.e.x, r.e.y), vec2(r.e.z, r.e.z), sel_uv) * ief;
+        vec2 iw_uv = mix(vec2(inv_width.x, inv_width.y), vec2(inv_width.z, inv_width.z), sel_uv);
+        vec2 dqx_uv = mix(vec2(dqx.x, dqx.y), vec2(dqx.z, dqx.z), sel_uv);
+        vec2 dqy_uv = mix(vec2(dqy.x, dqy.y), vec2(dqy.z, dqy.z), sel_uv);
+        float dqx_i = mix(mix(dqx.x, dqx.z, bz), dqx.y, by);
+        float dqy_i = mix(mix(dqy.x, dqy.z, bz), dqy.y, by);
+        ux = clamp((t * (dqx_uv - ratio * dqx_i)) * iw_uv, vec2(-RK_IM_DERIV_MAX), vec2(RK_IM_DERIV_MAX));
+        uy = clamp((t * (dqy_uv - ratio * dqy_i)) * iw_uv, vec2(-RK_IM_DERIV_MAX), vec2(RK_IM_DERIV_MAX));
     }
-    if (f.y < fd) {
-        fam = 1;
-        fd = f.y;
-    }
-    vec3 qh = q + fd * d;
-    float dfam = fam == 0 ? d.x : (fam == 1 ? d.y : d.z);
-    float t = max(1.0f + fd / max(dscale, RK_IM_DIR_MIN), RK_IM_T_MIN);
-
+    // The documented defaults when invalid (selects; the room is already the default one).
+    vec2 zero2 = vec2(0.0f);
     rk_im_hit h;
-    h.valid = valid;
-    h.t = t;
-    h.depth = fd * length(d * rs);
-    h.family = fam;
-    h.side = dfam >= 0.0f ? 1 : -1;
+    h.valid = r.valid;
+    h.t = r.valid ? t : 1.0f;
+    h.depth = r.valid ? depth : 0.0f;
+    h.family = r.valid ? fam : 1;
+    h.side = r.valid ? side : -1;
     h.room = ivec3(room);
-    vec3 pos = pc + (fd * d) * rs;
-    if (fam == 0) pos.x = o.x + plane.x * rs.x;
-    if (fam == 1) pos.y = o.y + plane.y * rs.y;
-    if (fam == 2) pos.z = o.z + plane.z * rs.z;
-    h.pos = pos;
-    vec3 uvw = (qh - lo) / width;
-    vec2 uv = fam == 0 ? vec2(uvw.z, uvw.y) : (fam == 1 ? vec2(uvw.x, uvw.z) : vec2(uvw.x, uvw.y));
-    h.uv = clamp(uv, vec2(0.0f), vec2(RK_IM_UV_MAX));
-    // d(hit) = t (dq - d dq_i / d_i) on the chosen plane i (grid units), then / width.
-    vec3 dqx = clamp(dp_dx / rs, vec3(-RK_IM_DQ_MAX), vec3(RK_IM_DQ_MAX));
-    vec3 dqy = clamp(dp_dy / rs, vec3(-RK_IM_DQ_MAX), vec3(RK_IM_DQ_MAX));
-    float inv_di = 1.0f / (dfam >= 0.0f ? max(dfam, RK_IM_PARALLEL) : min(dfam, -RK_IM_PARALLEL));
-    float kx = (fam == 0 ? dqx.x : (fam == 1 ? dqx.y : dqx.z)) * inv_di;
-    float ky = (fam == 0 ? dqy.x : (fam == 1 ? dqy.y : dqy.z)) * inv_di;
-    float tt = min(t, 1e12f);
-    vec3 hx = (tt * (dqx - d * kx)) / width;
-    vec3 hy = (tt * (dqy - d * ky)) / width;
-    vec2 ux = fam == 0 ? vec2(hx.z, hx.y) : (fam == 1 ? vec2(hx.x, hx.z) : vec2(hx.x, hx.y));
-    vec2 uy = fam == 0 ? vec2(hy.z, hy.y) : (fam == 1 ? vec2(hy.x, hy.z) : vec2(hy.x, hy.y));
-    h.uv_dx = clamp(ux, vec2(-RK_IM_DERIV_MAX), vec2(RK_IM_DERIV_MAX));
-    h.uv_dy = clamp(uy, vec2(-RK_IM_DERIV_MAX), vec2(RK_IM_DERIV_MAX));
-    if (!valid) {
-        h.t = 1.0f;
-        h.depth = 0.0f;
-        h.family = 1;
-        h.side = -1;
-        h.room = ivec3(floor(q));
-        h.uv = vec2(0.0f);
-        h.uv_dx = vec2(0.0f);
-        h.uv_dy = vec2(0.0f);
-        h.pos = pc;
-    }
+    h.uv = r.valid ? uv : zero2;
+    h.uv_dx = r.valid ? ux : zero2;
+    h.uv_dy = r.valid ? uy : zero2;
+    h.pos = r.valid ? pos : p;
     return h;
+}
+
+/// Regular grid, the three axes at once: the cell the ray is in after q' and the next plane
+/// strictly beyond q' (toward +axis: floor(q') + 1, toward -axis: ceil(q') - 1, i.e.
+/// s (floor(s q') + 1)); room = plane - 1 toward +axis, plane toward -axis.
+RK_INLINE rk_im_hit rk_im_detail_trace(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, bool with_grad, rk_im_grid g)
+{
+    rk_im_detail_ray r = rk_im_detail_setup(p, cam, n, g);
+    vec3 plane = r.s * (floor(r.s * r.qn) + vec3(1.0f));
+    vec3 room = plane - r.up;
+    return rk_im_detail_finish(p, g, dp_dx, dp_dy, with_grad, r, room, plane, room, vec3(1.0f));
+}
+
+/// Displaced walls, the three axes at once: the two-candidate rule {m, m + s}, m = floor(q')
+/// (exact for offsets in [0, 1)): the ray is in cell m - 1 when wall m lies beyond q' and the
+/// ray travels toward +axis, or when it does not and the ray travels toward -axis; that cell's
+/// other wall is m - 1 or m + 1 (all three wall offsets per axis are hashed, as one uvec3 hash each).
+RK_INLINE rk_im_hit rk_im_detail_trace_varying(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, bool with_grad,
+                                               rk_im_grid g, vec3 jitter, uint seed)
+{
+    rk_im_detail_ray r = rk_im_detail_setup(p, cam, n, g);
+    uvec3 key = rk_im_detail_wall_keys(seed);
+    vec3 jit = clamp(jitter, vec3(0.0f), vec3(1.0f));
+    vec3 m = floor(r.qn);
+    vec3 wm = m + rk_im_detail_wall_offset3(m, key, jit);
+    vec3 not_m = step((wm - r.qn) * r.s, vec3(0.0f));  // 1: wall m is not beyond q' along the ray
+    vec3 lower = abs(not_m - r.up);                     // 1: the ray is in cell m - 1
+    // The cell's other wall, m - 1 or m + 1: both are hashed (independent of the test above, so
+    // the three hashes run in parallel; a dependent second hash is slower on latency-bound SIMD).
+    vec3 wp = (m - vec3(1.0f)) + rk_im_detail_wall_offset3(m - vec3(1.0f), key, jit);
+    vec3 wn = (m + vec3(1.0f)) + rk_im_detail_wall_offset3(m + vec3(1.0f), key, jit);
+    vec3 wk = mix(wn, wp, bvec3(lower));
+    vec3 lo = min(wm, wk);                              // walls keep their order
+    vec3 inv_width = vec3(1.0f) / max(max(wm, wk) - lo, vec3(1.0e-6f));
+    vec3 plane = mix(wm, wk, bvec3(not_m));
+    return rk_im_detail_finish(p, g, dp_dx, dp_dy, with_grad, r, m - lower, plane, lo, inv_width);
 }
 
 // ---- traces ------------------------------------------------------------------------------------
@@ -337,26 +392,20 @@ RK_INLINE rk_im_hit rk_im_detail_finish(vec3 p, vec3 cam, rk_im_grid g, vec3 dp_
 /// along are boundary-ambiguous and counted separately); hit position error <= 1.9 * 2^-24 *
 /// (4 + |q|) room units times 1/|d_family| (the conditioning of the hit), uv within 1.6e-6;
 /// analytic derivatives within 1.2e-6 relative of finite differences. GPU parity (llvmpipe):
-/// 2 ulp. Cost: 3 + 6 (derivatives) divisions, ~60 ALU, no loops, no texture; constant
-/// whatever the number of rooms.
+/// 2 ulp. Cost: 10 scalar divisions (3 grid coordinates, 3 room-size reciprocals, 3 direction
+/// reciprocals reused by the plane distances and the derivatives, 1 normal scale), about 250
+/// scalar ALU ops, all selects (no branches), no loops, no texture; constant whatever the number
+/// of rooms. SPIR-V (spirv-opt -O): 166 instructions with every field used.
 RK_INLINE rk_im_hit rk_im_trace_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, rk_im_grid g)
 {
-    vec3 q, qn, d;
-    float dscale;
-    bool valid;
-    rk_im_detail_setup(p, cam, n, g, q, qn, d, dscale, valid);
-    vec3 room, plane, lo, width;
-    rk_im_detail_axis(qn.x, d.x, room.x, plane.x, lo.x, width.x);
-    rk_im_detail_axis(qn.y, d.y, room.y, plane.y, lo.y, width.y);
-    rk_im_detail_axis(qn.z, d.z, room.z, plane.z, lo.z, width.z);
-    return rk_im_detail_finish(p, cam, g, dp_dx, dp_dy, q, d, dscale, valid, room, plane, lo, width);
+    return rk_im_detail_trace(p, cam, n, dp_dx, dp_dy, true, g);
 }
 
-/// rk_im_trace: rk_im_trace_grad without derivatives (uv_dx = uv_dy = 0; the compiler drops
-/// their arithmetic). Use with textureLod or when the interior is not mip-mapped.
+/// rk_im_trace: rk_im_trace_grad without derivatives (uv_dx = uv_dy = 0, their work skipped).
+/// Use with textureLod or when the interior is not mip-mapped.
 RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 {
-    return rk_im_trace_grad(p, cam, n, vec3(0.0f), vec3(0.0f), g);
+    return rk_im_detail_trace(p, cam, n, vec3(0.0f), vec3(0.0f), false, g);
 }
 
 /// rk_im_trace_varying_grad: the trace with walls (and floors, jitter.y) displaced per wall
@@ -365,27 +414,20 @@ RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 /// rule (file header); room = the cell between the displaced walls; uv normalised across the
 /// displaced room's actual width, [0, 1); derivatives as rk_im_trace_grad divided by that width.
 /// Max error vs brute force over the displaced planes: as rk_im_trace_grad. Cost:
-/// rk_im_trace_grad + 9 wall offsets (each one rk_hash_u32 once the per-axis keys are shared).
+/// rk_im_trace_grad + 12 single-word hashes as 4 uvec3 hashes (the 3 keys, walls m - 1, m, m + 1:
+/// hashing both neighbours keeps the hashes independent, which is faster on latency-bound SIMD
+/// such as llvmpipe than hashing only the needed one after the test) and 3 divisions (the room
+/// widths). SPIR-V (spirv-opt -O): 249 instructions.
 RK_INLINE rk_im_hit rk_im_trace_varying_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, rk_im_grid g,
                                              vec3 jitter, uint seed)
 {
-    vec3 q, qn, d;
-    float dscale;
-    bool valid;
-    rk_im_detail_setup(p, cam, n, g, q, qn, d, dscale, valid);
-    vec3 room, plane, lo, width;
-    rk_im_detail_axis_varying(qn.x, d.x, 0, jitter.x, seed, room.x, plane.x, lo.x, width.x);
-    rk_im_detail_axis_varying(qn.y, d.y, 1, jitter.y, seed, room.y, plane.y, lo.y, width.y);
-    rk_im_detail_axis_varying(qn.z, d.z, 2, jitter.z, seed, room.z, plane.z, lo.z, width.z);
-    rk_im_hit h = rk_im_detail_finish(p, cam, g, dp_dx, dp_dy, q, d, dscale, valid, room, plane, lo, width);
-    if (!valid) h.room = rk_im_room_at_varying(p, g, jitter, seed);
-    return h;
+    return rk_im_detail_trace_varying(p, cam, n, dp_dx, dp_dy, true, g, jitter, seed);
 }
 
 /// rk_im_trace_varying: rk_im_trace_varying_grad without derivatives (uv_dx = uv_dy = 0).
 RK_INLINE rk_im_hit rk_im_trace_varying(vec3 p, vec3 cam, vec3 n, rk_im_grid g, vec3 jitter, uint seed)
 {
-    return rk_im_trace_varying_grad(p, cam, n, vec3(0.0f), vec3(0.0f), g, jitter, seed);
+    return rk_im_detail_trace_varying(p, cam, n, vec3(0.0f), vec3(0.0f), false, g, jitter, seed);
 }
 
 /// rk_im_trace_auto: the trace selected by RK_IM_VARYING_WALLS: 0 (default) rk_im_trace_grad
