@@ -1,0 +1,144 @@
+// Tests of raykit/interior_features.hpp: the macro set of a scene description and the padded-atlas
+// rule (checked against a brute-force simulation of mip building and bilinear taps).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "raykit/interior_features.hpp"
+
+using namespace raykit;
+
+namespace {
+
+std::map<std::string, std::string> as_map(const std::vector<ShaderDefine>& v)
+{
+    std::map<std::string, std::string> m;
+    for (const ShaderDefine& d : v) {
+        EXPECT_EQ(m.count(d.name), 0u) << "duplicate " << d.name;
+        m[d.name] = d.value;
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST(InteriorFeatures, DefaultSceneIsTheThesisMaterial)
+{
+    const auto m = as_map(interior_defines(InteriorSceneDesc{}));
+    EXPECT_EQ(m.size(), 10u);
+    EXPECT_EQ(m.at("RK_IM_SHADING"), "0");
+    EXPECT_EQ(m.at("RK_IM_COMPOSE_MODE"), "0");
+    EXPECT_EQ(m.at("RK_IM_ROOM_LIGHTS"), "0");
+    EXPECT_EQ(m.at("RK_IM_FURNITURE_LAYERS"), "0");  // no furniture -> the feature compiled out
+    EXPECT_EQ(m.at("RK_IM_FURNITURE_FLIPBOOK"), "0");  // ... and so is its flipbook
+    EXPECT_EQ(m.at("RK_IM_VARYING_WALLS"), "0");
+    EXPECT_EQ(m.at("RK_IM_REFLECTION"), "0");
+    EXPECT_EQ(m.at("RK_IM_FADE"), "0");
+    EXPECT_EQ(m.at("RK_IM_BUILDING_FACADE"), "0");
+    EXPECT_EQ(m.at("RK_IM_BUILDING_OUTPUT"), "0");
+}
+
+TEST(InteriorFeatures, EachFeatureMapsToItsMacro)
+{
+    InteriorSceneDesc d;
+    d.textures = InteriorTextures::cube_per_room;
+    d.glass = InteriorGlass::thesis_additive;
+    d.room_lights = true;
+    d.furniture_layers = 3;
+    d.varying_walls = true;
+    d.reflections = true;
+    d.fade_distance = 250.0f;
+    d.textured_facade = true;
+    d.tonemap_output = true;
+    const auto m = as_map(interior_defines(d));
+    EXPECT_EQ(m.at("RK_IM_SHADING"), "3");
+    EXPECT_EQ(m.at("RK_IM_COMPOSE_MODE"), "1");
+    EXPECT_EQ(m.at("RK_IM_ROOM_LIGHTS"), "1");
+    EXPECT_EQ(m.at("RK_IM_FURNITURE_LAYERS"), "3");
+    EXPECT_EQ(m.at("RK_IM_FURNITURE_FLIPBOOK"), "1");  // furniture_flipbook defaults to true
+    EXPECT_EQ(m.at("RK_IM_VARYING_WALLS"), "1");
+    EXPECT_EQ(m.at("RK_IM_REFLECTION"), "1");
+    EXPECT_EQ(m.at("RK_IM_FADE"), "1");
+    EXPECT_EQ(m.at("RK_IM_BUILDING_FACADE"), "1");
+    EXPECT_EQ(m.at("RK_IM_BUILDING_OUTPUT"), "1");
+    d.textures = InteriorTextures::padded_atlas;
+    EXPECT_EQ(as_map(interior_defines(d)).at("RK_IM_SHADING"), "2");
+    d.textures = InteriorTextures::texture_array;
+    EXPECT_EQ(as_map(interior_defines(d)).at("RK_IM_SHADING"), "1");
+    d.furniture_flipbook = false;  // single-image sprites: the flipbook lookup compiled out
+    EXPECT_EQ(as_map(interior_defines(d)).at("RK_IM_FURNITURE_FLIPBOOK"), "0");
+    d.furniture_flipbook = true;
+    // The injected text defines each macro once, after #version.
+    const std::string src = inject_shader_defines("#version 450 core\nvoid main() {}\n", interior_defines(d));
+    EXPECT_NE(src.find("#define RK_IM_FURNITURE_LAYERS 3"), std::string::npos);
+    EXPECT_LT(src.find("#version"), src.find("#define RK_IM_SHADING 1"));
+}
+
+TEST(InteriorFeatures, InvalidDescriptionsThrow)
+{
+    InteriorSceneDesc d;
+    d.furniture_layers = 5;
+    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    d.furniture_layers = -1;
+    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    d.furniture_layers = 0;
+    d.fade_distance = -1.0f;
+    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    d.fade_distance = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    d.fade_distance = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+}
+
+TEST(InteriorFeatures, AtlasPaddingRuleVsBruteForce)
+{
+    // Brute force: for every tile-interior sample position on a fine sub-texel lattice, at every
+    // level, the base-texel span of the two bilinear taps (each a cell-aligned 2^lod block) must lie
+    // inside the cell. Compare with interior_atlas_mip_safe for several paddings.
+    auto brute = [](int tile, int pad, int lod) {
+        const int cell = tile + 2 * pad;
+        const int s = 1 << lod;
+        if (cell % s != 0) return false;
+        for (int i = 0; i < tile * 16; ++i) {
+            const double x = pad + (i + 0.5) / 16.0;  // base-texel coordinate in the tile proper
+            const double xl = x / s - 0.5;
+            const long t0 = static_cast<long>(std::floor(xl));
+            if (t0 * s < 0 || (t0 + 2) * s > cell) return false;
+        }
+        return true;
+    };
+    int safe = 0, unsafe = 0;
+    for (int lod = 0; lod <= 4; ++lod) {
+        for (int pad = 0; pad <= 20; ++pad) {
+            for (int tile : {16, 32, 48, 64}) {
+                InteriorAtlasLayout l;
+                l.tile = tile;
+                l.pad = pad;
+                l.grid = 4;
+                l.max_lod = lod;
+                const bool b = brute(tile, pad, lod);
+                EXPECT_EQ(interior_atlas_mip_safe(l, lod), b) << tile << " " << pad << " " << lod;
+                (b ? safe : unsafe) += 1;
+            }
+        }
+    }
+    EXPECT_GT(safe, 20);
+    EXPECT_GT(unsafe, 20);
+    // The layout helper's padding is valid at every level up to max_lod, and the minimal one.
+    for (int lod = 0; lod <= 5; ++lod) {
+        const InteriorAtlasLayout l = interior_atlas_layout(64, 4, lod);
+        EXPECT_EQ(l.pad, lod == 0 ? 1 : 1 << (lod - 1));
+        for (int k = 0; k <= lod; ++k) EXPECT_TRUE(interior_atlas_mip_safe(l, k)) << lod << " " << k;
+        {
+            InteriorAtlasLayout smaller = l;
+            smaller.pad = l.pad - 1;
+            EXPECT_FALSE(brute(smaller.tile, smaller.pad, lod)) << lod;
+            EXPECT_FALSE(interior_atlas_mip_safe(smaller, lod)) << lod;
+        }
+        EXPECT_EQ(l.size(), 4 * (64 + 2 * l.pad));
+    }
+    EXPECT_THROW(interior_atlas_layout(60, 4, 3), std::invalid_argument);  // 60 not a multiple of 8
+    EXPECT_THROW(interior_atlas_layout(64, 0, 2), std::invalid_argument);
+}
