@@ -1,0 +1,319 @@
+// raykit — interior_shading.glsl: the GLSL-only (texture-sampling) half of interior mapping: room
+// surfaces from four textures, a texture array, a padded atlas or a cube map per room; furniture
+// sprite layers; and rk_im_shade_window(), which puts trace + shading + furniture + room lights +
+// fade + glass + composition together under the feature macros.
+// The maths is in the shared files (interior_mapping.glsl, interior_furniture.glsl,
+// interior_compose.glsl), tested on the CPU and for GPU parity; this file only samples.
+// samples/common/interior_building.frag is a complete material built on it.
+//
+// Every fetch is a textureGrad with the analytic derivatives of the trace (rk_im_hit.uv_dx/uv_dy,
+// rk_im_furniture_hit.uv_dx/uv_dy), which are continuous across room seams and plane-family
+// changes: no mip seams, and fetches are legal in non-uniform control flow (rk_im_shade_window
+// may be called inside `if (rk_im_needs_interior(mask))`). No dFdx/dFdy is evaluated here: the
+// caller passes dp_dx = dFdx(p), dp_dy = dFdy(p) computed in uniform control flow.
+//
+// Feature macros (each off value compiles the feature out entirely):
+//   RK_IM_SHADING  room textures (default 0, the thesis's; 1 is the RECOMMENDED mode):
+//     0  four sampler2D: ceiling, floor, wall_x (walls of constant x, family 0, uv = (z, y)),
+//        wall_z (walls of constant z, family 2, uv = (x, y)); the thesis's variant, kept for
+//        compatibility. It branches over four samplers: one fetch per pixel on a GPU (the branch
+//        is coherent inside a room), but a SIMD CPU rasteriser (llvmpipe) runs all four fetches
+//        (docs/benchmarks_interior.md: the dearest mode there, ~1.4 plain frames above mode 1).
+//     1  one sampler2DArray of 3 V layers: [0, V) ceilings, [V, 2V) floors, [2V, 3V) walls; each
+//        face of each room picks variant floor(rk_im_face_random(room, family, side, seed) V).
+//        Recommended: one fetch and no sampler branch on every device, and V = 1 gives the
+//        thesis's look from a 3-layer array.
+//     2  one sampler2D atlas of grid x grid padded cells holding the same 3 V tiles in row-major
+//        order (cell k at column k mod grid, row k / grid). PADDING RULE: each cell is tile + 2 pad
+//        texels, the gutter filled with the tile's own texels wrapped around (what GL_REPEAT would
+//        read); mip levels 0..max_lod never mix tiles when the cell is a multiple of 2^max_lod texels
+//        and pad >= max(1, 2^(max_lod - 1)). The shader clamps the LOD to max_lod by scaling the
+//        gradients down (isotropic filtering assumed: no anisotropy on the atlas sampler).
+//        raykit::interior_atlas_layout / interior_atlas_mip_safe (raykit/interior_features.hpp)
+//        compute and check the layout.
+//     3  one samplerCubeArray of N room cube maps (GL 4.0 / ARB_texture_cube_map_array): each room
+//        picks cube floor(rk_im_room_random(room, seed) N), looked up along the direction from the
+//        room centre to the hit point in room-normalised coordinates ([-1, 1]^3 across the room),
+//        rotated by a per-room multiple of 90° about y and tinted by rk_im_room_tint.
+//   RK_IM_FURNITURE_LAYERS 0..4 (interior_furniture.glsl): sprite planes from a sampler2DArray,
+//        layer l = sprite sheet l (flipbook of flipbook.x columns by flipbook.y rows, flipbook.z frames).
+//   RK_IM_FURNITURE_FLIPBOOK 0/1 (interior_furniture.glsl, default 1): 0 compiles the flipbook out
+//        (each layer is one sprite image; flipbook, flipbook_fps and time are not read).
+//   RK_IM_ROOM_LIGHTS, RK_IM_FADE, RK_IM_COMPOSE_MODE (interior_compose.glsl).
+//   RK_IM_VARYING_WALLS (interior_mapping.glsl): rk_im_trace_auto picks the varying-walls trace.
+//
+// @rk-stages frag
+// @rk-variants RK_IM_SHADING=1 | RK_IM_SHADING=2 | RK_IM_SHADING=3 | RK_IM_ROOM_LIGHTS=1 | RK_IM_FURNITURE_LAYERS=1 | RK_IM_FURNITURE_LAYERS=4 | RK_IM_FURNITURE_LAYERS=2 RK_IM_FURNITURE_FLIPBOOK=0 | RK_IM_FADE=1 | RK_IM_VARYING_WALLS=1 | RK_IM_COMPOSE_MODE=1 | RK_IM_SHADING=2 RK_IM_ROOM_LIGHTS=1 RK_IM_FURNITURE_LAYERS=2 RK_IM_FADE=1 | RK_IM_SHADING=3 RK_IM_ROOM_LIGHTS=1 RK_IM_FURNITURE_LAYERS=4 RK_IM_FADE=1 RK_IM_VARYING_WALLS=1
+#ifndef RK_INTERIOR_SHADING_GLSL
+#define RK_INTERIOR_SHADING_GLSL
+
+#include "interior_mapping.glsl"
+#include "interior_furniture.glsl"
+#include "interior_compose.glsl"
+
+#ifndef RK_IM_SHADING
+#define RK_IM_SHADING 0
+#endif
+#if RK_IM_SHADING < 0 || RK_IM_SHADING > 3
+#error "RK_IM_SHADING must be 0, 1, 2 or 3"
+#endif
+
+// Seed XORed into the caller's seed for the per-room choices of mode 3 (cube: lane x, rotation:
+// lane y of rk_im_room_lanes).
+#define RK_IM_CUBE_SEED 0x7F4A7C15u
+
+/// Everything rk_im_shade_window needs besides the samplers. Fields of features that are compiled
+/// out are not read. Units: object space unless stated.
+struct rk_im_window_params {
+    rk_im_grid grid;
+    vec3 normal;            // facade outward normal (object space, UNIT length: rk_im_furniture_unit)
+    vec3 tangent;           // facade frame for the furniture UVs (see interior_furniture.glsl)
+    vec3 bitangent;
+    uint seed;              // per building: all per-room randomness derives from it
+    vec3 jitter;            // RK_IM_VARYING_WALLS: wall displacement per axis, room units in [0, 1)
+    float variants;         // RK_IM_SHADING 1/2: variants V per surface kind; 3: number of cube maps N
+    vec4 atlas;             // RK_IM_SHADING 2: (grid, cell texels, pad texels, max_lod)
+    float tint_amount;      // RK_IM_SHADING 3: per-room tint strength in [0, 1]
+    float lit_probability;  // RK_IM_ROOM_LIGHTS: c of rk_im_room_light
+    vec3 light_warm;
+    vec3 light_cool;
+    vec2 light_level;
+    float unlit;            // light multiplier of unlit rooms (RK_IM_UNLIT_DEFAULT)
+    vec3 glass_tint;        // transmission tint of the glass, [0, 1]
+    float glass_eta;        // 1.52 for window glass
+    float glass_panes;      // read by RK_WINDOW_GLASS_FRESNEL 1 / RK_FRESNEL_WINDOW_MODE 3
+    vec4 furniture_depth;   // RK_IM_FURNITURE_LAYERS: plane depth behind the facade per layer
+    ivec4 flipbook;         // (columns, rows, frame count, unused) of every sprite sheet
+    float flipbook_fps;
+    float time;             // seconds
+    float alpha_threshold;  // sprite alpha test
+    vec2 fade_range;        // RK_IM_FADE: (start, end) of the fade band, in the units of view_distance
+    vec3 average_colour;    // RK_IM_FADE: the flat stand-in colour (also used when the trace is invalid)
+};
+
+/// rk_im_surface_kind: 0 ceiling, 1 floor, 2 wall: the texture group of a hit.
+RK_INLINE int rk_im_surface_kind(rk_im_hit h) { return h.family == 1 ? (h.side > 0 ? 0 : 1) : 2; }
+
+/// rk_im_variant: variant index in [0, V) of a hit's face, from rk_im_face_random.
+RK_INLINE float rk_im_variant(rk_im_hit h, float variants, uint seed)
+{
+    float v = max(floor(variants), 1.0f);
+    return min(floor(rk_im_face_random(h.room, h.family, h.side, seed) * v), v - 1.0f);
+}
+
+#if RK_IM_SHADING == 0
+/// rk_im_shade_four: the thesis's four textures, one textureGrad of the hit's family and side.
+/// Cost: 1 fetch (the branches are uniform inside a room).
+RK_INLINE vec4 rk_im_shade_four(rk_im_hit h, sampler2D ceiling, sampler2D floor_tex, sampler2D wall_x, sampler2D wall_z)
+{
+    if (h.family == 1) {
+        return h.side > 0 ? textureGrad(ceiling, h.uv, h.uv_dx, h.uv_dy) : textureGrad(floor_tex, h.uv, h.uv_dx, h.uv_dy);
+    }
+    return h.family == 0 ? textureGrad(wall_x, h.uv, h.uv_dx, h.uv_dy) : textureGrad(wall_z, h.uv, h.uv_dx, h.uv_dy);
+}
+#elif RK_IM_SHADING == 1
+/// rk_im_shade_array: layer kind V + variant of a sampler2DArray (see the file header). Cost: 1
+/// face hash + 1 fetch.
+RK_INLINE vec4 rk_im_shade_array(rk_im_hit h, sampler2DArray rooms, float variants, uint seed)
+{
+    float v = max(floor(variants), 1.0f);
+    float layer = float(rk_im_surface_kind(h)) * v + rk_im_variant(h, v, seed);
+    return textureGrad(rooms, vec3(h.uv, layer), h.uv_dx, h.uv_dy);
+}
+#elif RK_IM_SHADING == 2
+/// rk_im_atlas_uv: the atlas coordinate of uv in [0, 1) inside tile `index`; atlas = (grid, cell,
+/// pad, max_lod) as in rk_im_window_params. Writes the scale applied to uv derivatives.
+RK_INLINE vec2 rk_im_atlas_uv(vec2 uv, float index, vec4 atlas, out float deriv_scale)
+{
+    float grid = max(atlas.x, 1.0f);
+    float cell = max(atlas.y, 1.0f);
+    float pad = clamp(atlas.z, 0.0f, 0.5f * cell - 0.5f);
+    float inner = (cell - 2.0f * pad) / cell;   // the tile proper's share of its cell
+    float col = index - grid * floor(index / grid);
+    float row = floor(index / grid);
+    deriv_scale = inner / grid;
+    return (vec2(col, row) + vec2(pad / cell) + inner * uv) / grid;
+}
+
+/// rk_im_shade_atlas: tile kind V + variant of the padded atlas, with the LOD clamped to max_lod by
+/// scaling both gradients by min(1, 2^max_lod / rho), rho the larger gradient length in texels (the
+/// LOD the hardware would pick). Cost: 1 face hash, ~20 flops, 1 fetch.
+RK_INLINE vec4 rk_im_shade_atlas(rk_im_hit h, sampler2D atlas_tex, float variants, vec4 atlas, uint seed)
+{
+    float v = max(floor(variants), 1.0f);
+    float index = float(rk_im_surface_kind(h)) * v + rk_im_variant(h, v, seed);
+    float s;
+    vec2 uv = rk_im_atlas_uv(h.uv, index, atlas, s);
+    float texels = max(atlas.x, 1.0f) * max(atlas.y, 1.0f);
+    vec2 dx = h.uv_dx * s;
+    vec2 dy = h.uv_dy * s;
+    float rho = texels * sqrt(max(dot(dx, dx), dot(dy, dy)));
+    float limit = exp2(clamp(atlas.w, 0.0f, 16.0f));
+    float k = rho > limit ? limit / rho : 1.0f;
+    return textureGrad(atlas_tex, uv, dx * k, dy * k);
+}
+#elif RK_IM_SHADING == 3
+/// rk_im_cube_rotate: v rotated about +y by k * 90° (k in 0..3), exact (component swaps).
+RK_INLINE vec3 rk_im_cube_rotate(vec3 v, int k)
+{
+    if (k == 1) return vec3(v.z, v.y, -v.x);
+    if (k == 2) return vec3(-v.x, v.y, -v.z);
+    if (k == 3) return vec3(-v.z, v.y, v.x);
+    return v;
+}
+
+/// rk_im_shade_cube: the room's cube map along (hit - room centre) / (room_size / 2), rotated per
+/// room by a multiple of 90° about y, tinted per room. Derivatives: the hit moves on its plane, so
+/// d(pos) follows from uv_dx/uv_dy and the room size (exact for the regular grid; for varying walls
+/// uv spans the displaced room, so they are approximate). The cube is lane x, the rotation lane y of
+/// rk_im_room_lanes(room, seed ^ RK_IM_CUBE_SEED). Cost: 2 room hashes (that and the tint's), 1 fetch.
+RK_INLINE vec4 rk_im_shade_cube(rk_im_hit h, samplerCubeArray cubes, float count, float tint_amount, rk_im_grid g, uint seed)
+{
+    vec3 size = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
+    vec3 centre = g.origin + (vec3(h.room) + vec3(0.5f)) * size;
+    vec3 half_size = 0.5f * size;
+    vec3 dir = (h.pos - centre) / half_size;
+    vec3 dx = h.family == 0 ? vec3(0.0f, h.uv_dx.y, h.uv_dx.x) * vec3(1.0f, size.y, size.z)
+            : (h.family == 1 ? vec3(h.uv_dx.x, 0.0f, h.uv_dx.y) * vec3(size.x, 1.0f, size.z)
+                             : vec3(h.uv_dx.x, h.uv_dx.y, 0.0f) * vec3(size.x, size.y, 1.0f));
+    vec3 dy = h.family == 0 ? vec3(0.0f, h.uv_dy.y, h.uv_dy.x) * vec3(1.0f, size.y, size.z)
+            : (h.family == 1 ? vec3(h.uv_dy.x, 0.0f, h.uv_dy.y) * vec3(size.x, 1.0f, size.z)
+                             : vec3(h.uv_dy.x, h.uv_dy.y, 0.0f) * vec3(size.x, size.y, 1.0f));
+    vec3 lanes = rk_im_room_lanes(h.room, seed ^ RK_IM_CUBE_SEED);
+    int k = int(min(floor(lanes.y * 4.0f), 3.0f));
+    float n = max(floor(count), 1.0f);
+    float layer = min(floor(lanes.x * n), n - 1.0f);
+    vec4 c = textureGrad(cubes, vec4(rk_im_cube_rotate(dir, k), layer), rk_im_cube_rotate(dx / half_size, k),
+                         rk_im_cube_rotate(dy / half_size, k));
+    return vec4(vec3(c.x, c.y, c.z) * rk_im_room_tint(h.room, seed, tint_amount), c.w);
+}
+#endif
+
+#if RK_IM_FURNITURE_LAYERS > 0
+/// rk_im_shade_furniture: intersects the RK_IM_FURNITURE_LAYERS planes, samples each one nearer
+/// than the current nearest (initially the room hit at room_t) from layer l of `sprites` (with
+/// RK_IM_FURNITURE_FLIPBOOK 1 the flipbook frame of `room`, the room hit's room), alpha-tests it,
+/// and keeps the nearest visible one in `colour`. Returns whether any layer won. `room` is not
+/// changed: a plane in front of the room surface lies in the room hit's room (the cell the ray
+/// segment from p to the hit lies in), so that is the room of the furniture, for the flipbook
+/// and the room light alike (up to rounding where the plane hit lies within an ulp of a cell
+/// boundary). The frame and ray terms are computed once (rk_im_furniture_setup), only the plane
+/// depth differs per layer.
+/// Cost: setup (3 normalisations, ~50 flops) + per layer: the plane (1 div, ~25 flops; no room
+/// lookup), 1 fetch, and with RK_IM_FURNITURE_FLIPBOOK 1 a room hash and the frame arithmetic.
+RK_INLINE bool rk_im_shade_furniture(vec3 p, vec3 cam, vec3 dp_dx, vec3 dp_dy, float room_t, rk_im_window_params prm,
+                           sampler2DArray sprites, inout vec3 colour, ivec3 room)
+{
+    float nearest = room_t;
+    bool any = false;
+    rk_im_furniture_ray fr = rk_im_furniture_setup(p, cam, prm.normal, prm.tangent, prm.bitangent, dp_dx, dp_dy,
+                                                   prm.grid);
+#if RK_IM_FURNITURE_FLIPBOOK
+    int cols = clamp(prm.flipbook.x, 1, RK_IM_FLIPBOOK_SIDE_MAX);
+    int rows = clamp(prm.flipbook.y, 1, RK_IM_FLIPBOOK_SIDE_MAX);
+    vec2 sheet = vec2(1.0f / float(cols), 1.0f / float(rows));
+#endif
+    for (int l = 0; l < RK_IM_FURNITURE_LAYERS; ++l) {
+        rk_im_furniture_hit f = rk_im_furniture_layer(fr, prm.furniture_depth[l], prm.grid);
+        if (!f.valid || !(f.t < nearest)) continue;
+#if RK_IM_FURNITURE_FLIPBOOK
+        vec2 suv = rk_im_flipbook_room_uv(f.uv, room, prm.time, prm.flipbook_fps, prm.flipbook.z, cols, rows,
+                                          prm.seed + uint(l));
+        vec4 texel = textureGrad(sprites, vec3(suv, float(l)), f.uv_dx * sheet, f.uv_dy * sheet);
+#else
+        vec4 texel = textureGrad(sprites, vec3(f.uv, float(l)), f.uv_dx, f.uv_dy);
+#endif
+        // A visible plane lies on the ray segment from p to the room hit, i.e. inside the room
+        // hit's room (rk_im_hit.room is the cell that segment lies in): `room` stays that room,
+        // and no per-layer room lookup is needed (f.room is not read, so it is not computed).
+        if (rk_im_furniture_take(f, texel.w, prm.alpha_threshold, nearest)) {
+            colour = vec3(texel.x, texel.y, texel.z);
+            any = true;
+        }
+    }
+    return any;
+}
+#endif
+
+/// rk_im_shade_window: the whole window texel: trace (rk_im_trace_auto), room texture
+/// (RK_IM_SHADING), furniture layers, room light, distance fade, glass (rk_im_window) and
+/// composition with the exterior (rk_im_compose; exterior.w is the window mask, 1 = window).
+///   p, dp_dx, dp_dy  object-space surface point and its dFdx/dFdy (computed by the caller in
+///                    uniform control flow); cam the camera in object space;
+///   view_distance    the distance used by RK_IM_FADE (any unit, that of prm.fade_range);
+///   reflection       the environment colour seen in the pane (0 for none).
+/// Call it only where rk_im_needs_interior(exterior.w) (the result for other texels is correct but
+/// the trace is wasted). When the trace is invalid (camera behind the facade) the interior is
+/// prm.average_colour. Samplers by RK_IM_SHADING: 0 (ceiling, floor_tex, wall_x, wall_z),
+/// 1 (sampler2DArray rooms), 2 (sampler2D atlas), 3 (samplerCubeArray cubes); then, with
+/// RK_IM_FURNITURE_LAYERS > 0, sampler2DArray sprites.
+RK_INLINE vec3 rk_im_shade_window(vec4 exterior, vec3 p, vec3 cam, vec3 dp_dx, vec3 dp_dy, float view_distance, vec3 reflection,
+                        rk_im_window_params prm
+#if RK_IM_SHADING == 0
+                        , sampler2D ceiling, sampler2D floor_tex, sampler2D wall_x, sampler2D wall_z
+#elif RK_IM_SHADING == 1
+                        , sampler2DArray rooms
+#elif RK_IM_SHADING == 2
+                        , sampler2D atlas_tex
+#else
+                        , samplerCubeArray cubes
+#endif
+#if RK_IM_FURNITURE_LAYERS > 0
+                        , sampler2DArray sprites
+#endif
+)
+{
+    vec3 nn = prm.normal;
+    vec3 interior = prm.average_colour;
+#if RK_IM_FADE
+    // The flat stand-in: the average colour in the light of the room half a room behind p.
+    ivec3 flat_room = rk_im_room_at(p - nn * (0.5f * dot(abs(nn), prm.grid.room_size)), prm.grid);
+#if RK_IM_ROOM_LIGHTS
+    vec3 flat_light = rk_im_room_light(flat_room, prm.lit_probability, prm.seed, prm.light_warm, prm.light_cool,
+                                       prm.light_level, prm.unlit);
+#else
+    vec3 flat_light = vec3(1.0f);
+#endif
+    vec3 flat_colour = rk_im_fade_flat(prm.average_colour, flat_light);
+    float fade = rk_im_fade_weight(view_distance, prm.fade_range.x, prm.fade_range.y);
+    interior = flat_colour;
+    if (fade < 1.0f) {
+#else
+    RK_UNUSED(view_distance);
+    {
+#endif
+        rk_im_hit h = rk_im_trace_auto(p, cam, prm.normal, dp_dx, dp_dy, prm.grid, prm.jitter, prm.seed);
+        if (h.valid) {
+#if RK_IM_SHADING == 0
+            vec4 room_colour = rk_im_shade_four(h, ceiling, floor_tex, wall_x, wall_z);
+#elif RK_IM_SHADING == 1
+            vec4 room_colour = rk_im_shade_array(h, rooms, prm.variants, prm.seed);
+#elif RK_IM_SHADING == 2
+            vec4 room_colour = rk_im_shade_atlas(h, atlas_tex, prm.variants, prm.atlas, prm.seed);
+#else
+            vec4 room_colour = rk_im_shade_cube(h, cubes, prm.variants, prm.tint_amount, prm.grid, prm.seed);
+#endif
+            vec3 c = vec3(room_colour.x, room_colour.y, room_colour.z);
+            ivec3 room = h.room;
+#if RK_IM_FURNITURE_LAYERS > 0
+            rk_im_shade_furniture(p, cam, dp_dx, dp_dy, h.t, prm, sprites, c, room);
+#endif
+#if RK_IM_ROOM_LIGHTS
+            c *= rk_im_room_light(room, prm.lit_probability, prm.seed, prm.light_warm, prm.light_cool, prm.light_level,
+                                  prm.unlit);
+#endif
+            interior = c;
+        }
+#if RK_IM_FADE
+        interior = rk_im_fade(interior, flat_colour, fade);
+#endif
+    }
+    // |cos| of the viewing angle without normalising the eye vector: |n.v| / |v| (n is unit; |v|
+    // <= 3.5e15 after the clamps, so |v|^2 cannot overflow; the floor keeps cam = p finite).
+    vec3 to_eye = rk_im_furniture_clamp_coord(cam) - rk_im_furniture_clamp_coord(p);
+    float cos_view = min(abs(dot(nn, to_eye)) * inversesqrt(max(dot(to_eye, to_eye), 1.0e-30f)), 1.0f);
+    vec3 window = rk_im_window(interior, reflection, cos_view, prm.glass_tint, prm.glass_eta, prm.glass_panes);
+    return rk_im_compose(exterior, window);
+}
+
+#endif  // RK_INTERIOR_SHADING_GLSL
