@@ -473,6 +473,9 @@ def write_markdown(context, rows, suites, out_dir, pngs):
         md.append("Sections: " + ", ".join("[%s](#%s)" % (s.title.partition(":")[0].strip(), anchor(s.title))
                                            for s in suites) + ".")
         md.append("")
+    md.append("Interior mapping is measured as whole frames on the GPU driver, not per call: see "
+              "[benchmarks_interior.md](benchmarks_interior.md) (`bash scripts/bench_interior.sh`).")
+    md.append("")
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))
