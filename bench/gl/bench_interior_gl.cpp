@@ -68,18 +68,7 @@
 #include "raykit/shader_source.hpp"
 #include "rk_gl.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wcast-qual"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "rk_png.hpp"
 
 namespace {
 
@@ -846,7 +835,7 @@ void write_png_strip(const std::string& path, std::vector<std::vector<unsigned c
                         &images[k][static_cast<size_t>(y) * static_cast<size_t>(w) * 4u], static_cast<size_t>(w) * 4u);
         }
     }
-    if (!stbi_write_png(path.c_str(), w * cols, h * rows, 4, out.data(), w * cols * 4)) {
+    if (!rkgl::write_png_rgba8(path, w * cols, h * rows, out.data())) {
         throw std::runtime_error("cannot write " + path);
     }
 }

@@ -60,18 +60,7 @@
 #include <GLFW/glfw3.h>
 #endif
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wcast-qual"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "rk_png.hpp"
 
 namespace {
 
@@ -798,7 +787,7 @@ int run_headless(const Options& opt)
         for (std::size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;
         const GLenum err = glGetError();
         const std::string path = opt.out_dir + "/city_" + v.name + ".png";
-        if (!stbi_write_png(path.c_str(), s.width, s.height, 4, flipped.data(), s.width * 4)) {
+        if (!rkgl::write_png_rgba8(path, s.width, s.height, flipped.data())) {
             std::fprintf(stderr, "city: cannot write %s\n", path.c_str());
             return 1;
         }

@@ -26,18 +26,7 @@
 #include "rk_gl.hpp"
 #include "rk_text.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wcast-qual"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "rk_png.hpp"
 
 namespace {
 
@@ -261,7 +250,7 @@ int run(const char* out_path)
     }
     for (size_t i = 3; i < px.size(); i += 4) px[i] = 255;  // opaque PNG whatever the blend left in alpha
 
-    if (!stbi_write_png(out_path, kWidth, kHeight, 4, px.data(), kWidth * 4)) {
+    if (!rkgl::write_png_rgba8(out_path, kWidth, kHeight, px.data())) {
         std::fprintf(stderr, "fresnel_curves: cannot write %s\n", out_path);
         return 1;
     }
