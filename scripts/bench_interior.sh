@@ -279,7 +279,7 @@ the run above, the picture may move by a few tenths of a plain frame between run
   with the flat sky colour of rk_min too: -0.05 plain frames, within noise), so the material
   keeps the exact one.
 
-#### Optimisation log (helper E, after the first version of this document)
+#### Optimisation log (after the first version of this document)
 
 Measured as an A/B on the same trace (`interior_mapping.glsl` as of this run): the previous
 versions of `interior_{furniture,compose,shading}.glsl` and `interior_building.{vert,frag}` built

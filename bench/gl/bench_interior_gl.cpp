@@ -578,7 +578,7 @@ void set_bench_uniforms(GLuint prog, const Camera& cam, glm::vec3 room, float dp
 }
 
 // The raykit material's interface: filled in from samples/common/interior_building.{vert,frag}.
-// Uniforms of samples/common/interior_building.{vert,frag} (helper B's material; every uniform
+// Uniforms of samples/common/interior_building.{vert,frag} (the sample material; every uniform
 // there has a usable default, only what differs from it is set).
 void set_raykit_uniforms(GLuint prog, const Camera& cam, glm::vec3 room, float dp_guard)
 {
@@ -1160,9 +1160,22 @@ int run(const Options& opt)
 }
 
 // ---------------------------------------------------------------------------------------------
-// The raykit material (helper B's samples/common/interior_building.{vert,frag}).
+// The raykit material (the sample material, samples/common/interior_building.{vert,frag}).
 
 void add_raykit_materials(std::vector<Material>& out, const std::string& vert, const std::string& frag);
+
+/// base with the macro name set to value (replaced when present, appended otherwise).
+std::vector<raykit::ShaderDefine> with(std::vector<raykit::ShaderDefine> base, const std::string& name, const std::string& value)
+{
+    for (auto& d : base) {
+        if (d.name == name) {
+            d.value = value;
+            return base;
+        }
+    }
+    base.push_back({name, value});
+    return base;
+}
 
 /// Every material the benchmark knows, without GL objects (so --list-materials and --dump-frag
 /// work without a context). `note` says why the raykit materials are missing, if they are.
@@ -1194,16 +1207,6 @@ std::vector<Material> material_list(std::string& note)
     using D = std::vector<raykit::ShaderDefine>;
     const D full = {{"RK_IM_SHADING", "1"}, {"RK_IM_ROOM_LIGHTS", "1"}, {"RK_IM_FURNITURE_LAYERS", "2"},
                     {"RK_IM_REFLECTION", "1"}, {"RK_IM_FADE", "1"}};
-    auto with = [](D base, const std::string& name, const std::string& value) {
-        for (auto& d : base) {
-            if (d.name == name) {
-                d.value = value;
-                return base;
-            }
-        }
-        base.push_back({name, value});
-        return base;
-    };
     auto add_rk = [&](const std::string& name, const D& defines, const std::string& features) {
         Material m;
         m.name = prefix + name;
@@ -1256,7 +1259,7 @@ std::vector<Material> material_list(std::string& note)
     return out;
 }
 
-// Helper B's material, samples/common/interior_building.{vert,frag}, with the facade texture
+// The sample material, samples/common/interior_building.{vert,frag}, with the facade texture
 // (RK_IM_BUILDING_FACADE 1, the same facade as plain and thesis) and linear output.
 void add_raykit_materials(std::vector<Material>& out, const std::string& vert, const std::string& frag)
 {
@@ -1267,16 +1270,6 @@ void add_raykit_materials(std::vector<Material>& out, const std::string& vert, c
     const D full = {{"RK_IM_BUILDING_FACADE", "1"}, {"RK_IM_SHADING", "1"}, {"RK_IM_ROOM_LIGHTS", "1"},
                     {"RK_IM_FURNITURE_LAYERS", "2"}, {"RK_IM_FURNITURE_FLIPBOOK", "0"}, {"RK_IM_REFLECTION", "1"},
                     {"RK_IM_FADE", "1"}};
-    auto with = [](D base, const std::string& name, const std::string& value) {
-        for (auto& d : base) {
-            if (d.name == name) {
-                d.value = value;
-                return base;
-            }
-        }
-        base.push_back({name, value});
-        return base;
-    };
     auto add = [&](const std::string& name, const D& defines, const std::string& features) {
         Material m;
         m.name = "rk_" + name;
