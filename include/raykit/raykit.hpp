@@ -12,6 +12,7 @@
 #include "raykit/interior_features.hpp"
 #include "raykit/interior_furniture.hpp"
 #include "raykit/interior_mapping.hpp"
+#include "raykit/interior_surface.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/tonemap.hpp"

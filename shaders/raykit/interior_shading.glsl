@@ -3,7 +3,8 @@
 // sprite layers; and rk_im_shade_window(), which puts trace + shading + furniture + room lights +
 // fade + glass + composition together under the feature macros.
 // The maths is in the shared files (interior_mapping.glsl, interior_furniture.glsl,
-// interior_compose.glsl), tested on the CPU and for GPU parity; this file only samples.
+// interior_compose.glsl, interior_surface.glsl), tested on the CPU and for GPU parity; this file
+// only samples.
 // samples/common/interior_building.frag is a complete material built on it.
 //
 // Every fetch is a textureGrad with the analytic derivatives of the trace (rk_im_hit.uv_dx/uv_dy,
@@ -32,9 +33,9 @@
 //        raykit::interior_atlas_layout / interior_atlas_mip_safe (raykit/interior_features.hpp)
 //        compute and check the layout.
 //     3  one samplerCubeArray of N room cube maps (GL 4.0 / ARB_texture_cube_map_array): each room
-//        picks cube floor(rk_im_room_random(room, seed) N), looked up along the direction from the
-//        room centre to the hit point in room-normalised coordinates ([-1, 1]^3 across the room),
-//        rotated by a per-room multiple of 90° about y and tinted by rk_im_room_tint.
+//        picks a cube and a rotation (a multiple of 90° about y) and looks it up along the hit
+//        point in the room's own [-1, 1]^3 coordinates (rk_im_cube_lookup in interior_surface.glsl;
+//        exact for displaced walls too), tinted by rk_im_room_tint.
 //   RK_IM_FURNITURE_LAYERS 0..4 (interior_furniture.glsl): sprite planes from a sampler2DArray,
 //        layer l = sprite sheet l (flipbook of flipbook.x columns by flipbook.y rows, flipbook.z frames).
 //   RK_IM_FURNITURE_FLIPBOOK 0/1 (interior_furniture.glsl, default 1): 0 compiles the flipbook out
@@ -50,6 +51,7 @@
 #include "interior_mapping.glsl"
 #include "interior_furniture.glsl"
 #include "interior_compose.glsl"
+#include "interior_surface.glsl"
 
 #ifndef RK_IM_SHADING
 #define RK_IM_SHADING 0
@@ -57,10 +59,6 @@
 #if RK_IM_SHADING < 0 || RK_IM_SHADING > 3
 #error "RK_IM_SHADING must be 0, 1, 2 or 3"
 #endif
-
-// Seed XORed into the caller's seed for the per-room choices of mode 3 (cube: lane x, rotation:
-// lane y of rk_im_room_lanes).
-#define RK_IM_CUBE_SEED 0x7F4A7C15u
 
 /// Everything rk_im_shade_window needs besides the samplers. Fields of features that are compiled
 /// out are not read. Units: object space unless stated.
@@ -91,16 +89,6 @@ struct rk_im_window_params {
     vec3 average_colour;    // RK_IM_FADE: the flat stand-in colour (also used when the trace is invalid)
 };
 
-/// rk_im_surface_kind: 0 ceiling, 1 floor, 2 wall: the texture group of a hit.
-RK_INLINE int rk_im_surface_kind(rk_im_hit h) { return h.family == 1 ? (h.side > 0 ? 0 : 1) : 2; }
-
-/// rk_im_variant: variant index in [0, V) of a hit's face, from rk_im_face_random.
-RK_INLINE float rk_im_variant(rk_im_hit h, float variants, uint seed)
-{
-    float v = max(floor(variants), 1.0f);
-    return min(floor(rk_im_face_random(h.room, h.family, h.side, seed) * v), v - 1.0f);
-}
-
 #if RK_IM_SHADING == 0
 /// rk_im_shade_four: the thesis's four textures, one textureGrad of the hit's family and side.
 /// Cost: 1 fetch (the branches are uniform inside a room).
@@ -112,80 +100,35 @@ RK_INLINE vec4 rk_im_shade_four(rk_im_hit h, sampler2D ceiling, sampler2D floor_
     return h.family == 0 ? textureGrad(wall_x, h.uv, h.uv_dx, h.uv_dy) : textureGrad(wall_z, h.uv, h.uv_dx, h.uv_dy);
 }
 #elif RK_IM_SHADING == 1
-/// rk_im_shade_array: layer kind V + variant of a sampler2DArray (see the file header). Cost: 1
-/// face hash + 1 fetch.
+/// rk_im_shade_array: layer rk_im_array_layer (kind V + variant) of a sampler2DArray (see the file
+/// header). Cost: 1 face hash + 1 fetch.
 RK_INLINE vec4 rk_im_shade_array(rk_im_hit h, sampler2DArray rooms, float variants, uint seed)
 {
-    float v = max(floor(variants), 1.0f);
-    float layer = float(rk_im_surface_kind(h)) * v + rk_im_variant(h, v, seed);
-    return textureGrad(rooms, vec3(h.uv, layer), h.uv_dx, h.uv_dy);
+    return textureGrad(rooms, vec3(h.uv, rk_im_array_layer(h, variants, seed)), h.uv_dx, h.uv_dy);
 }
 #elif RK_IM_SHADING == 2
-/// rk_im_atlas_uv: the atlas coordinate of uv in [0, 1) inside tile `index`; atlas = (grid, cell,
-/// pad, max_lod) as in rk_im_window_params. Writes the scale applied to uv derivatives.
-RK_INLINE vec2 rk_im_atlas_uv(vec2 uv, float index, vec4 atlas, out float deriv_scale)
-{
-    float grid = max(atlas.x, 1.0f);
-    float cell = max(atlas.y, 1.0f);
-    float pad = clamp(atlas.z, 0.0f, 0.5f * cell - 0.5f);
-    float inner = (cell - 2.0f * pad) / cell;   // the tile proper's share of its cell
-    float col = index - grid * floor(index / grid);
-    float row = floor(index / grid);
-    deriv_scale = inner / grid;
-    return (vec2(col, row) + vec2(pad / cell) + inner * uv) / grid;
-}
-
-/// rk_im_shade_atlas: tile kind V + variant of the padded atlas, with the LOD clamped to max_lod by
-/// scaling both gradients by min(1, 2^max_lod / rho), rho the larger gradient length in texels (the
-/// LOD the hardware would pick). Cost: 1 face hash, ~20 flops, 1 fetch.
+/// rk_im_shade_atlas: tile rk_im_array_layer (kind V + variant) of the padded atlas at
+/// rk_im_atlas_uv, with the LOD clamped to max_lod by scaling both gradients by
+/// rk_im_atlas_grad_scale. Cost: 1 face hash, ~30 flops, 1 fetch.
 RK_INLINE vec4 rk_im_shade_atlas(rk_im_hit h, sampler2D atlas_tex, float variants, vec4 atlas, uint seed)
 {
-    float v = max(floor(variants), 1.0f);
-    float index = float(rk_im_surface_kind(h)) * v + rk_im_variant(h, v, seed);
     float s;
-    vec2 uv = rk_im_atlas_uv(h.uv, index, atlas, s);
-    float texels = max(atlas.x, 1.0f) * max(atlas.y, 1.0f);
+    vec2 uv = rk_im_atlas_uv(h.uv, rk_im_array_layer(h, variants, seed), atlas, s);
     vec2 dx = h.uv_dx * s;
     vec2 dy = h.uv_dy * s;
-    float rho = texels * sqrt(max(dot(dx, dx), dot(dy, dy)));
-    float limit = exp2(clamp(atlas.w, 0.0f, 16.0f));
-    float k = rho > limit ? limit / rho : 1.0f;
+    float k = rk_im_atlas_grad_scale(dx, dy, atlas);
     return textureGrad(atlas_tex, uv, dx * k, dy * k);
 }
 #elif RK_IM_SHADING == 3
-/// rk_im_cube_rotate: v rotated about +y by k * 90° (k in 0..3), exact (component swaps).
-RK_INLINE vec3 rk_im_cube_rotate(vec3 v, int k)
+/// rk_im_shade_cube: the room's cube map at rk_im_cube_lookup (the hit in the room's own
+/// [-1, 1]^3 coordinates, exact for displaced walls too, rotated per room by a multiple of 90°
+/// about y; a cube per room), tinted per room by rk_im_room_tint. Cost: 2 room hashes (the
+/// lookup's and the tint's), ~25 flops, 1 fetch.
+RK_INLINE vec4 rk_im_shade_cube(rk_im_hit h, samplerCubeArray cubes, float count, float tint_amount, uint seed)
 {
-    if (k == 1) return vec3(v.z, v.y, -v.x);
-    if (k == 2) return vec3(-v.x, v.y, -v.z);
-    if (k == 3) return vec3(-v.z, v.y, v.x);
-    return v;
-}
-
-/// rk_im_shade_cube: the room's cube map along (hit - room centre) / (room_size / 2), rotated per
-/// room by a multiple of 90° about y, tinted per room. Derivatives: the hit moves on its plane, so
-/// d(pos) follows from uv_dx/uv_dy and the room size (exact for the regular grid; for varying walls
-/// uv spans the displaced room, so they are approximate). The cube is lane x, the rotation lane y of
-/// rk_im_room_lanes(room, seed ^ RK_IM_CUBE_SEED). Cost: 2 room hashes (that and the tint's), 1 fetch.
-RK_INLINE vec4 rk_im_shade_cube(rk_im_hit h, samplerCubeArray cubes, float count, float tint_amount, rk_im_grid g, uint seed)
-{
-    vec3 size = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
-    vec3 centre = g.origin + (vec3(h.room) + vec3(0.5f)) * size;
-    vec3 half_size = 0.5f * size;
-    vec3 dir = (h.pos - centre) / half_size;
-    vec3 dx = h.family == 0 ? vec3(0.0f, h.uv_dx.y, h.uv_dx.x) * vec3(1.0f, size.y, size.z)
-            : (h.family == 1 ? vec3(h.uv_dx.x, 0.0f, h.uv_dx.y) * vec3(size.x, 1.0f, size.z)
-                             : vec3(h.uv_dx.x, h.uv_dx.y, 0.0f) * vec3(size.x, size.y, 1.0f));
-    vec3 dy = h.family == 0 ? vec3(0.0f, h.uv_dy.y, h.uv_dy.x) * vec3(1.0f, size.y, size.z)
-            : (h.family == 1 ? vec3(h.uv_dy.x, 0.0f, h.uv_dy.y) * vec3(size.x, 1.0f, size.z)
-                             : vec3(h.uv_dy.x, h.uv_dy.y, 0.0f) * vec3(size.x, size.y, 1.0f));
-    vec3 lanes = rk_im_room_lanes(h.room, seed ^ RK_IM_CUBE_SEED);
-    int k = int(min(floor(lanes.y * 4.0f), 3.0f));
-    float n = max(floor(count), 1.0f);
-    float layer = min(floor(lanes.x * n), n - 1.0f);
-    vec4 c = textureGrad(cubes, vec4(rk_im_cube_rotate(dir, k), layer), rk_im_cube_rotate(dx / half_size, k),
-                         rk_im_cube_rotate(dy / half_size, k));
-    return vec4(vec3(c.x, c.y, c.z) * rk_im_room_tint(h.room, seed, tint_amount), c.w);
+    rk_im_cube_coord c = rk_im_cube_lookup(h, count, seed);
+    vec4 t = textureGrad(cubes, vec4(c.dir, c.layer), c.dx, c.dy);
+    return vec4(vec3(t.x, t.y, t.z) * rk_im_room_tint(h.room, seed, tint_amount), t.w);
 }
 #endif
 
@@ -291,7 +234,7 @@ RK_INLINE vec3 rk_im_shade_window(vec4 exterior, vec3 p, vec3 cam, vec3 dp_dx, v
 #elif RK_IM_SHADING == 2
             vec4 room_colour = rk_im_shade_atlas(h, atlas_tex, prm.variants, prm.atlas, prm.seed);
 #else
-            vec4 room_colour = rk_im_shade_cube(h, cubes, prm.variants, prm.tint_amount, prm.grid, prm.seed);
+            vec4 room_colour = rk_im_shade_cube(h, cubes, prm.variants, prm.tint_amount, prm.seed);
 #endif
             vec3 c = vec3(room_colour.x, room_colour.y, room_colour.z);
             ivec3 room = h.room;

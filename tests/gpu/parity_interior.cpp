@@ -9,6 +9,7 @@
 
 #include "parity.hpp"
 #include "raykit/interior_mapping.hpp"
+#include "raykit/interior_surface.hpp"
 
 using namespace raykit;
 using parity::Domain;
@@ -179,6 +180,41 @@ std::vector<Entry> interior_cases()
                     RK_EMIT_HIT(h));
     c.inputs = trace_domains(true);
     e.push_back({c, kHitExact});
+    // interior_surface.glsl: the texel choice of each room-texture mode, on the scene traces
+    // (displaced walls, so the cube direction is exercised where the regular cell differs).
+    const char* S = "raykit/interior_surface.glsl";
+    c = RK_PARITY_X("rk_im_array_layer / rk_im_surface_kind", S, (Domain{}), 3,
+                    RK_TRACE_SCENE rk_im_hit h = rk_im_trace_varying_grad(p, cam, n, dpx, dpy, g, vec3(a[21], a[22], a[23]), RK_KEY(24, 25));
+                    o[0] = rk_im_array_layer(h, 1.0f + 7.0f * clamp(a[20], 0.0f, 1.0f), RK_KEY(24, 25));
+                    o[1] = float(rk_im_surface_kind(h)); o[2] = rk_im_variant(h, 3.0f, RK_KEY(25, 24)););
+    c.inputs = trace_domains(true);
+    e.push_back({c, {0, 1, 2}});
+    c = RK_PARITY_X("rk_im_cube_lookup", S, (Domain{}), 10,
+                    RK_TRACE_SCENE rk_im_hit h = rk_im_trace_varying_grad(p, cam, n, dpx, dpy, g, vec3(a[21], a[22], a[23]), RK_KEY(24, 25));
+                    rk_im_cube_coord cc = rk_im_cube_lookup(h, 1.0f + 15.0f * clamp(a[20], 0.0f, 1.0f), RK_KEY(24, 25));
+                    o[0] = cc.dir.x; o[1] = cc.dir.y; o[2] = cc.dir.z; o[3] = cc.dx.x; o[4] = cc.dx.y; o[5] = cc.dx.z;
+                    o[6] = cc.dy.x; o[7] = cc.dy.y; o[8] = cc.dy.z; o[9] = cc.layer;);
+    c.inputs = trace_domains(true);
+    c.abs_tol = 1e-5;
+    c.rel_tol = 1e-4;
+    e.push_back({c, {9}});
+    c = RK_PARITY_X("rk_im_atlas_uv / rk_im_atlas_grad_scale", S,
+                    (dom::unit(), dom::unit(), dom::unit(), dom::range(1.0f, 16.0f), dom::range(8.0f, 512.0f), dom::range(0.0f, 8.0f),
+                     dom::range(0.0f, 8.0f), dom::range(-0.05f, 0.05f), dom::range(-0.05f, 0.05f), dom::range(-0.05f, 0.05f),
+                     dom::range(-0.05f, 0.05f)),
+                    4,
+                    vec4 atlas = vec4(floor(clamp(a[3], 1.0f, 16.0f)), floor(clamp(a[4], 8.0f, 512.0f)), floor(clamp(a[5], 0.0f, 8.0f)), a[6]);
+                    float index = floor(clamp(a[2], 0.0f, 1.0f) * (atlas.x * atlas.x - 1.0f));
+                    float s; vec2 uv = rk_im_atlas_uv(vec2(a[0], a[1]), index, atlas, s);
+                    o[0] = uv.x; o[1] = uv.y; o[2] = s;
+                    o[3] = rk_im_atlas_grad_scale(vec2(a[7], a[8]) * s, vec2(a[9], a[10]) * s, atlas););
+    c.abs_tol = 1e-6;
+    c.rel_tol = 4e-7;
+    e.push_back({c, {}});
+    c = RK_PARITY_X("rk_im_cube_rotate", S, (dom::signed_unit(), dom::signed_unit(), dom::signed_unit(), dom::range(0.0f, 5.0f)), 3,
+                    vec3 v = rk_im_cube_rotate(vec3(a[0], a[1], a[2]), int(clamp(a[3], 0.0f, 5.0f)));
+                    o[0] = v.x; o[1] = v.y; o[2] = v.z;);
+    e.push_back({c, {0, 1, 2}});
     return e;
 }
 
