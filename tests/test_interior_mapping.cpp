@@ -646,7 +646,12 @@ TEST(InteriorMapping, RoomGridForBuildingPutsWallsBetweenWindows)
         float px, pz;
     } cases[] = {{glm::vec3(-9.0f, 0.0f, -6.0f), glm::vec3(9.0f, 93.0f, 6.0f), 31, 6, 6, 1.5f, 1.0f},  // the thesis's 31 floors
                  {glm::vec3(0.0f), glm::vec3(20.0f, 12.0f, 14.0f), 4, 3, 2, 2.1f, 1.9f},
-                 {glm::vec3(-3.3f, 1.0f, 2.0f), glm::vec3(10.1f, 41.0f, 9.7f), 10, 4, 5, 1.37f, 0.0f}};
+                 {glm::vec3(-3.3f, 1.0f, 2.0f), glm::vec3(10.1f, 41.0f, 9.7f), 10, 4, 5, 1.37f, 0.0f},
+                 // 10 bays asked for 3 rooms: 2 (5 bays each) is nearer than 5; 7 bays (prime) asked
+                 // for 2: 1 is nearer than 7; 12 bays asked for 4 and 5: 4 exactly, then 4 or 6 (tie:
+                 // the fewer).
+                 {glm::vec3(0.0f), glm::vec3(21.0f, 10.0f, 13.3f), 3, 3, 2, 2.1f, 1.9f},
+                 {glm::vec3(0.0f), glm::vec3(24.0f, 10.0f, 24.0f), 3, 4, 5, 2.0f, 2.0f}};
     for (const B& b : cases) {
         const rk_im_grid g = room_grid_for_building(b.lo, b.hi, b.floors, b.rx, b.rz, b.px, b.pz);
         for (int a = 0; a < 3; ++a) {
@@ -668,6 +673,14 @@ TEST(InteriorMapping, RoomGridForBuildingPutsWallsBetweenWindows)
             }
             const long bays = std::max(1L, std::lround(w / pitch));
             const double bay = w / static_cast<double>(bays);
+            // The room count: of the divisors of the bay count, the one nearest to the request
+            // (ties: the fewer rooms), by exhaustive search.
+            const long asked = a == 0 ? b.rx : b.rz;
+            long want_rooms = 0;
+            for (long m = 1; m <= bays; ++m) {
+                if (bays % m == 0 && (want_rooms == 0 || std::labs(m - asked) < std::labs(want_rooms - asked))) want_rooms = m;
+            }
+            EXPECT_EQ(std::lround(w / dd(g.room_size[a])), want_rooms) << "axis " << a << ", " << bays << " bays, asked " << asked;
             for (long j = 0; j < bays; ++j) {
                 const double centre = dd(b.lo[a]) + (static_cast<double>(j) + 0.5) * bay;
                 const double q = (centre - dd(g.origin[a])) / dd(g.room_size[a]);

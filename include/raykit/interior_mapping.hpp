@@ -33,18 +33,14 @@ inline glm::vec3 camera_to_object_space(const glm::mat4& world_from_object, glm:
 }
 
 namespace detail {
-/// The divisor of n nearest to target (ties: the smaller), n >= 1.
-inline int nearest_divisor(int n, double target)
+/// The number of rooms K <= n, K a divisor of n (so n bays split into K rooms of n / K bays),
+/// nearest to `rooms` (ties: the fewer rooms), n >= 1.
+inline int nearest_room_count(int n, int rooms)
 {
     int best = 1;
-    double best_err = std::abs(1.0 - target);
     for (int k = 2; k <= n; ++k) {
         if (n % k != 0) continue;
-        const double err = std::abs(static_cast<double>(k) - target);
-        if (err < best_err) {
-            best = k;
-            best_err = err;
-        }
+        if (std::abs(k - rooms) < std::abs(best - rooms)) best = k;
     }
     return best;
 }
@@ -57,8 +53,8 @@ inline float room_size_along(float lo, float hi, int rooms, float window_pitch)
     if (!(window_pitch > 0.0f)) return static_cast<float>(width / r);
     // N window bays of equal width fill the facade (the pitch is stretched to fit exactly).
     const int bays = std::max(1, static_cast<int>(std::lround(width / window_pitch)));
-    const int per_room = nearest_divisor(bays, static_cast<double>(bays) / r);
-    return static_cast<float>(width / bays * per_room);
+    const int count = nearest_room_count(bays, r);
+    return static_cast<float>(width / bays * (bays / count));
 }
 }  // namespace detail
 
@@ -68,9 +64,10 @@ inline float room_size_along(float lo, float hi, int rooms, float window_pitch)
 /// window_pitch_x, z likewise): the facade of width W holds N = max(1, round(W / pitch)) window
 /// bays of equal width b = W / N (the pitch stretched so that N bays fill the facade exactly),
 /// window j centred at extent_min + (j + 0.5) b, so bay boundaries extent_min + k b are halfway
-/// between neighbouring windows. A room spans K bays, K the divisor of N nearest to N / rooms
-/// (ties to the smaller), so rooms_x is honoured as closely as possible while both facades stay
-/// on walls: room_size = K b, origin = extent_min, walls at extent_min + k K b. A pitch <= 0
+/// between neighbouring windows. The facade holds M rooms of N / M bays each, M the divisor of N
+/// nearest to rooms_x (ties: the fewer rooms), so the room count is as close to rooms_x as it can
+/// be while both facades stay on walls: room_size = (N / M) b, origin = extent_min, walls at
+/// extent_min + k (N / M) b (M = rooms_x whenever rooms_x divides N). A pitch <= 0
 /// ignores windows: room_size = W / rooms. Vertically: room_size.y = height / floors (floors
 /// clamped >= 1), origin.y = extent_min.y. Facades lying exactly on grid planes are handled by
 /// the trace's nudge rule. Cost: O(N) (divisor search).
