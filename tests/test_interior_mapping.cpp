@@ -234,7 +234,8 @@ TEST(InteriorMapping, MatchesBruteForceOverAMillionRays)
         EXPECT_EQ(tl.non_finite, 0) << c.name;
         EXPECT_EQ(tl.t_not_above_1, 0) << c.name;
         // Position/uv error within 64 float ulps of the grid-coordinate magnitude.
-        EXPECT_LE(tl.max_rel_err, 64.0) << c.name;
+        EXPECT_LE(tl.max_rel_err, 4.0) << c.name;  // documented 1.9 (measured), with headroom for other compilers
+        EXPECT_LE(tl.max_uv_err, 4e-6) << c.name;   // documented 1.6e-6
         // Ambiguous rays are counted, not hidden: the axis-parallel set deliberately puts half of
         // its rays exactly on a wall plane they run along (p on the plane to float precision).
         const long allowed = c.kind == Kind::axis_parallel ? c.rays / 20 : c.rays / 1000;
@@ -285,7 +286,8 @@ TEST(InteriorMapping, VaryingWallsMatchBruteForce)
             check_ray(r, true, jitter, static_cast<u32>(rng()), tl);
         }
         EXPECT_EQ(tl.wrong_family + tl.wrong_room + tl.wrong_valid + tl.non_finite + tl.t_not_above_1, 0);
-        EXPECT_LE(tl.max_rel_err, 64.0);
+        EXPECT_LE(tl.max_rel_err, 12.0);  // documented 6.1 (measured), with headroom
+        EXPECT_LE(tl.max_uv_err, 1.2e-5);  // documented 4.9e-6
         all.merge(tl);
     }
     all.print("varying walls");
@@ -855,4 +857,182 @@ TEST(InteriorMapping, DerivativesOfNearlyParallelHitsStayFinite)
                 "non-finite %ld\n", n, tiny_family, bad);
     EXPECT_GT(tiny_family, 0);
     EXPECT_EQ(bad, 0);
+}
+
+TEST(InteriorMapping, CurvedFacadesMatchBruteForce)
+{
+    // Round towers: p on a vertical cylinder of radius R about the y axis, the outward normal
+    // radial (not axis-aligned: the nudge may apply on x and z at once), some p snapped onto an x
+    // grid plane. Float64 reference: every plane of the three families near p, the nearest
+    // crossing beyond p (tie order x, z, y); planes within RK_IM_NUDGE room units of p along an
+    // axis where the ray moves into the building (n_i s_i < -1e-6 max|n|) count as the facade and
+    // are skipped; the room is the cell of the midpoint between the last skipped plane (or p) and
+    // the hit. Two float ambiguities are let through, and counted: a tie within float tolerance
+    // (two families' crossings, or a ray within rounding of the tangent plane), and p within float tolerance (1e-6 rooms) of a plane of an axis along which the
+    // ray moves OUTWARD (possible only on a curved facade): the float grid coordinate of p decides
+    // whether the ray starts before that plane (and meets it at once, edge-on) or beyond it; both
+    // answers are accepted (the reference is run both ways).
+    std::mt19937 rng(71u);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const double nudge = 0.0009765625;
+    long n = 0, wrong = 0, ties = 0, on_plane = 0, invalid_mismatch = 0, nudged = 0;
+    std::string first_wrong;
+    struct RefHit {
+        int fam = -1;
+        glm::ivec3 room{0};
+        double tf[3] = {0, 0, 0};
+        double best = 0;
+        bool on_plane = false;  // an outward-axis plane within float tolerance of p exists
+        long nudged = 0;
+    };
+    for (int i = 0; i < 300000; ++i) {
+        const float rx = static_cast<float>(0.7 + 4.0 * U(rng)), ry = static_cast<float>(2.5 + 1.5 * U(rng)),
+                    rz = static_cast<float>(0.7 + 4.0 * U(rng));
+        const float ox = static_cast<float>(-10.0 + 20.0 * U(rng)), oy = static_cast<float>(-5.0 + 10.0 * U(rng)),
+                    oz = static_cast<float>(-10.0 + 20.0 * U(rng));
+        const rk_im_grid g = make_grid(glm::vec3(rx, ry, rz), glm::vec3(ox, oy, oz));
+        const double R = 5.0 + 20.0 * U(rng), ang = 6.283185307179586 * U(rng), y = 40.0 * U(rng);
+        glm::vec3 p(static_cast<float>(R * std::cos(ang)), static_cast<float>(y), static_cast<float>(R * std::sin(ang)));
+        const glm::vec3 nrm(static_cast<float>(std::cos(ang)), 0.0f, static_cast<float>(std::sin(ang)));
+        if (i % 4 == 0) p.x = g.origin.x + std::round((p.x - g.origin.x) / g.room_size.x) * g.room_size.x;
+        // Camera in the outward hemisphere (some grazing), 0.1 to 100 units away.
+        glm::dvec3 d;
+        do {
+            const double dx = 2.0 * U(rng) - 1.0, dy = 2.0 * U(rng) - 1.0, dz = 2.0 * U(rng) - 1.0;
+            d = glm::dvec3(dx, dy, dz);
+        } while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-4);
+        d = glm::normalize(d);
+        if (glm::dot(d, glm::dvec3(nrm)) < 0.0) d = -d;
+        if (i % 10 == 1) d = glm::normalize(d - glm::dvec3(nrm) * (glm::dot(d, glm::dvec3(nrm)) * (1.0 - 1e-3)));
+        const glm::vec3 cam = glm::vec3(glm::dvec3(p) + std::pow(10.0, -1.0 + 3.0 * U(rng)) * d);
+        const rk_im_hit h = rk_im_trace(p, cam, nrm, g);
+        const glm::dvec3 P(p), C(cam), D = P - C, O(g.origin), RS(g.room_size);
+        const bool valid = glm::dot(glm::dvec3(nrm), D) < 0.0;
+        if (valid != h.valid) {
+            // The facing test in float: only a ray within rounding of the tangent plane may differ.
+            if (std::abs(glm::dot(glm::dvec3(nrm), D)) <= 1e-6 * glm::length(D)) ++ties;
+            else ++invalid_mismatch;
+            continue;
+        }
+        if (!valid) continue;
+        ++n;
+        auto reference = [&](bool start_beyond_on_plane) {
+            RefHit r;
+            r.best = std::numeric_limits<double>::infinity();
+            double t_start = 1.0;
+            for (int ax : {0, 2, 1}) {
+                r.tf[ax] = std::numeric_limits<double>::infinity();
+                if (D[ax] == 0.0) continue;
+                const double q = (P[ax] - O[ax]) / RS[ax], s = D[ax] > 0.0 ? 1.0 : -1.0;
+                const bool inward = dd(nrm[ax]) * s < -1e-6;
+                for (long k = static_cast<long>(std::floor(q)) - 2; k <= static_cast<long>(std::floor(q)) + 2; ++k) {
+                    const double t = (O[ax] + static_cast<double>(k) * RS[ax] - C[ax]) / D[ax];
+                    const double gap = std::abs(static_cast<double>(k) - q);
+                    if (!inward && gap <= 1e-6 * (1.0 + std::abs(q))) {
+                        // p before the plane: the ray meets it at once; p beyond it: skipped.
+                        r.on_plane = true;
+                        if (start_beyond_on_plane) t_start = std::max(t_start, t);
+                        else r.tf[ax] = std::min(r.tf[ax], std::max(t, 1.0));
+                        continue;
+                    }
+                    if (!(t > 1.0)) continue;
+                    if (inward && gap <= nudge) {
+                        t_start = std::max(t_start, t);
+                        ++r.nudged;
+                        continue;
+                    }
+                    r.tf[ax] = std::min(r.tf[ax], t);
+                }
+                if (r.tf[ax] < r.best) {
+                    r.best = r.tf[ax];
+                    r.fam = ax;
+                }
+            }
+            const glm::dvec3 mid = C + 0.5 * (t_start + r.best) * D;
+            r.room = glm::ivec3(glm::floor((mid - O) / RS));
+            return r;
+        };
+        const RefHit ra = reference(false);
+        nudged += ra.nudged;
+        if (ra.fam == h.family && ra.room == h.room) continue;
+        if (ra.on_plane) {
+            const RefHit rb = reference(true);
+            if (rb.fam == h.family && rb.room == h.room) {
+                ++on_plane;
+                continue;
+            }
+        }
+        if (std::abs(ra.tf[h.family] - ra.best) <= 1e-5 * ra.best) {  // the float trace cannot separate them
+            ++ties;
+            continue;
+        }
+        if (first_wrong.empty())
+            first_wrong = rktest::fmt("p", p.x, p.y, p.z, "cam", cam.x, cam.y, cam.z, "family", h.family, ra.fam, "room", h.room.x, h.room.y,
+                                      h.room.z, ra.room.x, ra.room.y, ra.room.z, "q", (P.x - O.x) / RS.x, (P.y - O.y) / RS.y,
+                                      (P.z - O.z) / RS.z, "lib t", h.t, "ref t", ra.best);
+        ++wrong;
+    }
+    std::printf("[im] curved facades: %ld valid rays, %ld wrong, %ld family ties, %ld p on an outward-axis plane (either side accepted), "
+                "%ld nudged planes, validity mismatches %ld%s%s\n",
+                n, wrong, ties, on_plane, nudged, invalid_mismatch, first_wrong.empty() ? "" : "; first wrong: ", first_wrong.c_str());
+    EXPECT_GT(n, 250000);
+    EXPECT_GT(nudged, 1000);  // the on-plane facades exercise the nudge
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(invalid_mismatch, 0);
+    EXPECT_LE(ties, n / 1000);
+    EXPECT_LE(on_plane, n / 4 + n / 1000);  // the snapped quarter of the rays, and a few by chance
+}
+
+TEST(InteriorMapping, VaryingWallDerivativesMatchFiniteDifferences)
+{
+    // uv of a displaced room spans the room actually hit: u = (x - wall_lo) / (wall_hi - wall_lo)
+    // with the walls at origin + (k + offset(k)) room_size. Float64: the hit of p + h dp on the
+    // plane hit (same plane, same room), central differences of u, against uv_dx / uv_dy.
+    std::mt19937 rng(73u);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const rk_im_grid g = make_grid(glm::vec3(2.0f, 3.0f, 2.5f), glm::vec3(0.3f, 0.0f, -0.2f));
+    const glm::vec3 jitter(0.6f, 0.5f, 0.7f);
+    const u32 seed = 9u;
+    auto wall = [&](int axis, long k) {
+        return dd(g.origin[axis]) + (static_cast<double>(k) + dd(rk_im_wall_offset(axis, static_cast<int>(k), jitter[axis], seed))) *
+                                        dd(g.room_size[axis]);
+    };
+    double max_rel = 0;
+    long n = 0;
+    std::string worst;
+    for (int i = 0; i < 100000; ++i) {
+        const glm::vec3 p(static_cast<float>(20.0 * U(rng)), static_cast<float>(30.0 * U(rng)), 10.0f);
+        const glm::vec3 cam(static_cast<float>(-40.0 + 100.0 * U(rng)), static_cast<float>(-20.0 + 70.0 * U(rng)),
+                            static_cast<float>(10.5 + 60.0 * U(rng)));
+        const float px = static_cast<float>(1e-3 + 0.05 * U(rng));
+        const glm::vec3 dx(px, 0.0f, 0.0f), dy(0.0f, px, 0.0f);
+        const rk_im_hit h = rk_im_trace_varying_grad(p, cam, glm::vec3(0, 0, 1), dx, dy, g, jitter, seed);
+        if (!h.valid) continue;
+        const int fam = h.family, ua = fam == 0 ? 2 : 0, vb = fam == 1 ? 2 : 1;
+        const double plane = dd(h.pos[fam]);
+        const double lo_u = wall(ua, h.room[ua]), hi_u = wall(ua, h.room[ua] + 1);
+        const double lo_v = wall(vb, h.room[vb]), hi_v = wall(vb, h.room[vb] + 1);
+        auto uv_at = [&](glm::dvec3 pp) {
+            const glm::dvec3 c(cam), dir = pp - c;
+            const glm::dvec3 x = c + ((plane - c[fam]) / dir[fam]) * dir;
+            return glm::dvec2((x[ua] - lo_u) / (hi_u - lo_u), (x[vb] - lo_v) / (hi_v - lo_v));
+        };
+        const double hstep = 1e-3;
+        for (int k = 0; k < 2; ++k) {
+            const glm::dvec3 dp = k == 0 ? glm::dvec3(dx) : glm::dvec3(dy);
+            const glm::dvec2 fd = (uv_at(glm::dvec3(p) + hstep * dp) - uv_at(glm::dvec3(p) - hstep * dp)) / (2.0 * hstep);
+            const glm::vec2 an = k == 0 ? h.uv_dx : h.uv_dy;
+            const double scale = std::max(1e-6, std::max(std::abs(fd.x), std::abs(fd.y)));
+            const double rel = std::max(std::abs(dd(an.x) - fd.x), std::abs(dd(an.y) - fd.y)) / scale;
+            if (rel > max_rel) {
+                max_rel = rel;
+                worst = rktest::fmt("p", p.x, p.y, p.z, "cam", cam.x, cam.y, cam.z, "family", fam, "analytic", an.x, an.y, "fd", fd.x, fd.y);
+            }
+        }
+        ++n;
+    }
+    std::printf("[im] varying-wall derivatives: %ld rays, max relative error vs finite differences %.3g; worst %s\n", n, max_rel,
+                worst.c_str());
+    EXPECT_GT(n, 50000);
+    EXPECT_LT(max_rel, 1e-4);
 }

@@ -8,8 +8,8 @@
 // samples/common/interior_building.frag is a complete material built on it.
 //
 // Every fetch is a textureGrad with the analytic derivatives of the trace (rk_im_hit.uv_dx/uv_dy,
-// rk_im_furniture_hit.uv_dx/uv_dy), which are continuous across room seams and plane-family
-// changes: no mip seams, and fetches are legal in non-uniform control flow (rk_im_shade_window
+// rk_im_furniture_hit.uv_dx/uv_dy), which are continuous across room seams and exact on both
+// sides of a plane-family change (no neighbour differences): no mip seams, and fetches are legal in non-uniform control flow (rk_im_shade_window
 // may be called inside `if (rk_im_needs_interior(mask))`). No dFdx/dFdy is evaluated here: the
 // caller passes dp_dx = dFdx(p), dp_dy = dFdy(p) computed in uniform control flow.
 //
