@@ -16,6 +16,7 @@
 #include "raykit/interior_compose.hpp"
 #include "raykit/interior_features.hpp"
 #include "raykit/interior_furniture.hpp"
+#include "raykit/interior_surface.hpp"
 #include "raykit/shader_source.hpp"
 
 using namespace raykit;
@@ -519,4 +520,193 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
     glDeleteTextures(8, texs);
     glDeleteBuffers(1, &k.vbo);
     glDeleteVertexArrays(1, &k.vao);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Which texel each room-texture mode fetches, on the driver: every 2D texture, array layer, atlas
+// tile and cube face holds its own exact colour (a palette of RGBA32F values, NEAREST, one level),
+// the window is the thesis's additive one over a black sky (so a window pixel is exactly the room
+// texel), and every window pixel is compared with the texel the CPU build of the same trace and
+// selection (interior_mapping.glsl + interior_surface.glsl) picks for the point under the pixel
+// centre. Regular and displaced walls; three cameras that see walls, floors and ceilings.
+
+TEST(GpuRender, InteriorRoomTexturesFetchTheSelectedTexel)
+{
+    const std::string dir = parity::shader_dir();
+    const std::string samples = dir + "/../samples/common/";
+    const int W = 160, H = 120;
+    auto pal = [](int i) { return vec3(static_cast<float>(i % 5 + 1) / 8.0f, static_cast<float>((i / 5) % 5 + 1) / 8.0f,
+                                       static_cast<float>((i / 25) % 5 + 1) / 8.0f); };
+    auto solid = [&](int i, int texels) {
+        std::vector<float> d;
+        for (int t = 0; t < texels; ++t) d.insert(d.end(), {pal(i).x, pal(i).y, pal(i).z, 1.0f});
+        return d;
+    };
+    const float V = 3.0f, N = 3.0f;
+    const int grid = 4, cell = 16, pad = 2;
+    const uint32_t seed = 7u;
+    // Mode 0: four textures, palette 0..3. Mode 1: 3 V layers, palette 10 + layer. Mode 2: a grid x
+    // grid atlas, cell k (pad included) palette 30 + k. Mode 3: N cubes, face f of cube c palette
+    // 50 + 6 c + f (GL face order +X, -X, +Y, -Y, +Z, -Z).
+    GLuint four[4];
+    for (int i = 0; i < 4; ++i) four[i] = make_tex(GL_TEXTURE_2D, 4, 4, 1, solid(i, 16), true);
+    std::vector<float> layers;
+    for (int l = 0; l < 3 * static_cast<int>(V); ++l) {
+        const std::vector<float> t = solid(10 + l, 16);
+        layers.insert(layers.end(), t.begin(), t.end());
+    }
+    const GLuint array = make_tex(GL_TEXTURE_2D_ARRAY, 4, 4, 3 * static_cast<int>(V), layers, true);
+    std::vector<float> atlas_texels;
+    for (int y = 0; y < grid * cell; ++y)
+        for (int x = 0; x < grid * cell; ++x) {
+            const vec3 c = pal(30 + (y / cell) * grid + x / cell);
+            atlas_texels.insert(atlas_texels.end(), {c.x, c.y, c.z, 1.0f});
+        }
+    const GLuint atlas = make_tex(GL_TEXTURE_2D, grid * cell, grid * cell, 1, atlas_texels, true);
+    std::vector<float> faces;
+    for (int f = 0; f < 6 * static_cast<int>(N); ++f) {
+        const std::vector<float> t = solid(50 + f, 16);
+        faces.insert(faces.end(), t.begin(), t.end());
+    }
+    const GLuint cubes = make_tex(GL_TEXTURE_CUBE_MAP_ARRAY, 4, 4, 6 * static_cast<int>(N), faces, true);
+
+    // One facade quad, z = 0 facing +z, 12 x 9 units = 3 x 3 rooms of 4 x 3, on a grid plane.
+    const float verts[] = {0, 0, 0, 0, 0, 1, 0, 0, 12, 0, 0, 0, 0, 1, 3, 0, 12, 9, 0, 0, 0, 1, 3, 3,
+                           0, 0, 0, 0, 0, 1, 0, 0, 12, 9, 0, 0, 0, 1, 3, 3, 0, 9, 0, 0, 0, 1, 0, 3};
+    GLuint vbo = 0, vao = 0, colour = 0, fbo = 0;
+    glCreateBuffers(1, &vbo);
+    glNamedBufferStorage(vbo, sizeof verts, verts, 0);
+    glCreateVertexArrays(1, &vao);
+    glVertexArrayVertexBuffer(vao, 0, vbo, 0, 8 * sizeof(float));
+    for (GLuint a = 0; a < 3; ++a) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, a == 0 ? 0 : (a == 1 ? 12 : 24));
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
+    glCreateTextures(GL_TEXTURE_2D, 1, &colour);
+    glTextureStorage2D(colour, 1, GL_RGBA32F, W, H);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour, 0);
+    ASSERT_EQ(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER), static_cast<GLenum>(GL_FRAMEBUFFER_COMPLETE));
+
+    rk_im_grid g;
+    g.room_size = vec3(4.0f, 3.0f, 4.0f);
+    g.origin = vec3(0.0f);
+    const vec3 jitter(0.4f, 0.3f, 0.4f);
+    const glm::vec3 cams[] = {{6.0f, 4.5f, 14.0f}, {1.0f, 8.0f, 2.0f}, {11.0f, 0.8f, 1.6f}};
+    const float window_size = 0.9f;
+    long total_checked = 0;
+    for (int mode = 0; mode < 4; ++mode) {
+        for (int varying = 0; varying < 2; ++varying) {
+            const std::vector<ShaderDefine> defs = {{"RK_IM_SHADING", std::to_string(mode)},
+                                                    {"RK_IM_VARYING_WALLS", std::to_string(varying)},
+                                                    {"RK_IM_COMPOSE_MODE", "1"}};
+            SCOPED_TRACE(variant_name(defs));
+            GLuint prog = 0;
+            try {
+                prog = rkgl::build_program({{GL_VERTEX_SHADER, load_shader_file(samples + "interior_building.vert", {dir}, defs)},
+                                            {GL_FRAGMENT_SHADER, load_shader_file(samples + "interior_building.frag", {dir}, defs)}});
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << e.what();
+                continue;
+            }
+            glUseProgram(prog);
+            auto loc = [&](const char* nm) { return glGetUniformLocation(prog, nm); };
+            const glm::mat4 id(1.0f);
+            glUniformMatrix4fv(loc("u_world_from_object"), 1, GL_FALSE, &id[0][0]);
+            glUniform3f(loc("u_room_size"), g.room_size.x, g.room_size.y, g.room_size.z);
+            glUniform3f(loc("u_grid_origin"), 0.0f, 0.0f, 0.0f);
+            glUniform1ui(loc("u_seed"), seed);
+            glUniform3f(loc("u_wall_jitter"), jitter.x, jitter.y, jitter.z);
+            glUniform2f(loc("u_window_size"), window_size, window_size);
+            glUniform3f(loc("u_sky_color"), 0.0f, 0.0f, 0.0f);
+            glUniform1f(loc("u_variants"), mode == 3 ? N : V);
+            glUniform4f(loc("u_atlas"), static_cast<float>(grid), static_cast<float>(cell), static_cast<float>(pad), 0.0f);
+            glUniform1f(loc("u_tint_amount"), 0.0f);
+            for (GLuint u = 1; u <= 4; ++u) glBindTextureUnit(u, four[u - 1]);
+            glBindTextureUnit(5, mode == 1 ? array : (mode == 2 ? atlas : (mode == 3 ? cubes : 0)));
+            long checked = 0, wrong = 0, skipped_edge = 0;
+            std::string first_wrong;
+            for (const glm::vec3& cam : cams) {
+                const glm::mat4 vp = glm::perspective(glm::radians(75.0f), static_cast<float>(W) / H, 0.05f, 100.0f) *
+                                     glm::lookAt(cam, glm::vec3(6.0f, 4.5f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+                glUniformMatrix4fv(loc("u_clip_from_world"), 1, GL_FALSE, &vp[0][0]);
+                glUniform3f(loc("u_camera_world"), cam.x, cam.y, cam.z);
+                glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+                glViewport(0, 0, W, H);
+                const float clear[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+                glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear);
+                glBindVertexArray(vao);
+                glDrawArrays(GL_TRIANGLES, 0, 6);
+                std::vector<float> img(static_cast<size_t>(W) * H * 4);
+                glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, img.data());
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+                const glm::mat4 inv = glm::inverse(vp);
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x) {
+                        const size_t i = (static_cast<size_t>(y) * W + static_cast<size_t>(x)) * 4;
+                        if (img[i + 3] < 0.0f) continue;  // background
+                        // The object-space point under a pixel centre (the quad is z = 0).
+                        auto point_at = [&](float px, float py) {
+                            const glm::vec4 ndc(px / W * 2.0f - 1.0f, py / H * 2.0f - 1.0f, 0.0f, 1.0f);
+                            const glm::vec4 a = inv * ndc;
+                            const glm::vec3 ray = glm::vec3(a) / a.w - cam;
+                            return cam + ray * (-cam.z / ray.z);
+                        };
+                        const float xf = static_cast<float>(x) + 0.5f, yf = static_cast<float>(y) + 0.5f;
+                        const glm::vec3 p = point_at(xf, yf);
+                        // Deep inside a window, where the facade's antialiased mask is exactly 1:
+                        // |room cell fraction - 1/2| - window / 2 below -0.6 of the pixel footprint in
+                        // cells (the shader's fwidth; its mask is 1 below -0.5).
+                        auto cell_of = [&](glm::vec3 q) { return glm::vec2(q.x / g.room_size.x, q.y / g.room_size.y); };
+                        const glm::vec2 c0 = cell_of(p);
+                        const glm::vec2 foot = glm::abs(cell_of(point_at(xf + 1.0f, yf)) - c0) + glm::abs(cell_of(point_at(xf, yf + 1.0f)) - c0);
+                        const glm::vec2 dist = glm::abs(c0 - glm::floor(c0) - 0.5f) - 0.5f * window_size;
+                        if (dist.x > -0.6f * foot.x || dist.y > -0.6f * foot.y) continue;
+                        const rk_im_hit h = varying ? rk_im_trace_varying(p, cam, vec3(0, 0, 1), g, jitter, seed)
+                                                    : rk_im_trace(p, cam, vec3(0, 0, 1), g);
+                        if (!h.valid) continue;
+                        // A hit within rounding of the face's edge may go to the neighbouring face.
+                        const float e = 0.004f;
+                        if (h.uv.x < e || h.uv.x > 1.0f - e || h.uv.y < e || h.uv.y > 1.0f - e) {
+                            ++skipped_edge;
+                            continue;
+                        }
+                        int index = 0;
+                        if (mode == 0) index = h.family == 1 ? (h.side > 0 ? 0 : 1) : (h.family == 0 ? 2 : 3);
+                        if (mode == 1) index = 10 + static_cast<int>(rk_im_array_layer(h, V, seed));
+                        if (mode == 2) index = 30 + static_cast<int>(rk_im_array_layer(h, V, seed));
+                        if (mode == 3) {
+                            const rk_im_cube_coord c = rk_im_cube_lookup(h, N, seed);
+                            const glm::vec3 ad = glm::abs(c.dir);
+                            const int ax = ad.x >= ad.y && ad.x >= ad.z ? 0 : (ad.y >= ad.z ? 1 : 2);
+                            index = 50 + 6 * static_cast<int>(c.layer) + 2 * ax + (c.dir[ax] < 0.0f ? 1 : 0);
+                        }
+                        const vec3 want = pal(index), got(img[i], img[i + 1], img[i + 2]);
+                        ++checked;
+                        if (glm::length(got - want) > 1e-5f) {
+                            if (first_wrong.empty())
+                                first_wrong = rktest::fmt("pixel", x, y, "cam", cam.x, cam.y, cam.z, "family", h.family, "side", h.side,
+                                                          "room", h.room.x, h.room.y, h.room.z, "want", want.x, want.y, want.z, "got",
+                                                          got.x, got.y, got.z);
+                            ++wrong;
+                        }
+                    }
+            }
+            glDeleteProgram(prog);
+            std::printf("[render] %-60s window pixels checked %6ld, wrong texel %ld, near a face edge (skipped) %ld%s%s\n",
+                        variant_name(defs).c_str(), checked, wrong, skipped_edge, first_wrong.empty() ? "" : "; first wrong: ",
+                        first_wrong.c_str());
+            EXPECT_GT(checked, 5000);
+            EXPECT_EQ(wrong, 0);
+            total_checked += checked;
+        }
+    }
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    glDeleteFramebuffers(1, &fbo);
+    const GLuint texs[] = {colour, four[0], four[1], four[2], four[3], array, atlas, cubes};
+    glDeleteTextures(8, texs);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    std::printf("[render] room textures: %ld window pixels checked in total\n", total_checked);
 }
