@@ -83,12 +83,15 @@ inline rk_im_grid room_grid_for_building(glm::vec3 extent_min, glm::vec3 extent_
 }
 
 /// room_at: the room (grid cell) containing an object-space point (rk_im_room_at), for gameplay
-/// queries: "which room is the player looking at, is it lit?".
+/// queries: "which room is the player looking at, is it lit?". Exact for |grid coordinate| < 2^22
+/// rooms (the trace's domain; far from the origin use a local origin, interior_mapping.glsl);
+/// the room the trace reports for a ray starting in that room. Cost: 3 sub, 3 div, 3 floor.
 inline glm::ivec3 room_at(glm::vec3 point, const rk_im_grid& grid) { return rk_im_room_at(point, grid); }
 
 /// lit_fraction: the fraction of `rooms` with rk_im_room_lit(room, c, seed). Its expectation is
 /// c (clamped to [0, 1]) with binomial standard deviation sqrt(c (1 - c) / rooms.size()); 0 for
-/// an empty list.
+/// an empty list. Exact count (rk_im_room_lit is bit-identical on the GPU); cost: one PCG3D hash
+/// per room.
 inline double lit_fraction(float c, const std::vector<glm::ivec3>& rooms, std::uint32_t seed)
 {
     if (rooms.empty()) return 0.0;

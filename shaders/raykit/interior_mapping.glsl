@@ -404,7 +404,10 @@ RK_INLINE rk_im_hit rk_im_trace_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 
 }
 
 /// rk_im_trace: rk_im_trace_grad without derivatives (uv_dx = uv_dy = 0, their work skipped).
-/// Use with textureLod or when the interior is not mip-mapped.
+/// Use with textureLod or when the interior is not mip-mapped. Domain, edge cases and max error:
+/// those of rk_im_trace_grad; every other field is bit-identical to it (tests/
+/// test_interior_mapping.cpp TraceWithoutDerivativesIsTheGradTrace). Cost: rk_im_trace_grad less
+/// the derivative work: 121 SPIR-V instructions (spirv-opt -O), 10 scalar divisions.
 RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 {
     return rk_im_detail_trace(p, cam, n, vec3(0.0f), vec3(0.0f), false, g);
@@ -431,7 +434,10 @@ RK_INLINE rk_im_hit rk_im_trace_varying_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_d
     return rk_im_detail_trace_varying(p, cam, n, dp_dx, dp_dy, true, g, jitter, seed);
 }
 
-/// rk_im_trace_varying: rk_im_trace_varying_grad without derivatives (uv_dx = uv_dy = 0).
+/// rk_im_trace_varying: rk_im_trace_varying_grad without derivatives (uv_dx = uv_dy = 0). Domain,
+/// edge cases and max error: those of rk_im_trace_varying_grad, every other field bit-identical
+/// to it (TraceWithoutDerivativesIsTheGradTrace). Cost: rk_im_trace_varying_grad less the
+/// derivative work (the 12 hashes and 3 width divisions remain).
 RK_INLINE rk_im_hit rk_im_trace_varying(vec3 p, vec3 cam, vec3 n, rk_im_grid g, vec3 jitter, uint seed)
 {
     return rk_im_detail_trace_varying(p, cam, n, vec3(0.0f), vec3(0.0f), false, g, jitter, seed);
