@@ -92,7 +92,10 @@ shared float rk_lr_sum[RK_LUMINANCE_REDUCE_THREADS];
 shared uint rk_lr_bins[RK_LUMINANCE_HISTOGRAM_BINS];
 
 /// rk_lr_pixel_log2: the term rk_log2_luminance of pixel p (inside the image). channels: 1 reads
-/// the first component as luminance; 3 or 4 read linear Rec.709 RGB.
+/// the first component as luminance; 3 or 4 read linear Rec.709 RGB. Error: that of
+/// rk_log2_luminance (exposure.glsl). Cost: 1 texelFetch (source 0) or 1 / 3 SSBO loads (source 1,
+/// plus 2 integer mads for the address), then rk_log2_luminance (1 dot for RGB, sanitise, 1 add,
+/// 1 max, 1 log2).
 RK_INLINE float rk_lr_pixel_log2(ivec2 p, ivec2 size, int channels, float delta)
 {
 #if RK_LUMINANCE_REDUCE_SOURCE == 0
@@ -112,6 +115,9 @@ RK_INLINE float rk_lr_pixel_log2(ivec2 p, ivec2 size, int channels, float delta)
 /// rk_lr_group_sum: the workgroup-wide sum of one float per invocation, by a pairwise tree in
 /// shared memory (error ~log2(threads) ulp instead of the serial sum's ~threads ulp). Every
 /// invocation must call it (uniform control flow); every invocation gets the sum.
+/// Cost: 1 shared store, then log2(RK_LUMINANCE_REDUCE_THREADS) rounds (8 at the default 16x16) of
+/// one shared load + add + store by the lower half of the active invocations and one barrier each
+/// (THREADS - 1 adds per workgroup in all; 1 + log2(THREADS) barriers), then 1 shared load.
 RK_INLINE float rk_lr_group_sum(float v)
 {
     uint i = gl_LocalInvocationIndex;
@@ -130,7 +136,7 @@ RK_INLINE float rk_lr_group_sum(float v)
 
 /// rk_lr_tile_origin: the first pixel this invocation reads in its workgroup's tile; it then reads
 /// RK_LUMINANCE_REDUCE_THREAD_TILE^2 pixels RK_LUMINANCE_REDUCE_GROUP apart (neighbouring
-/// invocations read neighbouring pixels: coalesced loads).
+/// invocations read neighbouring pixels: coalesced loads). Exact (integers). Cost: 2 integer mads.
 RK_INLINE ivec2 rk_lr_tile_origin()
 {
     return ivec2(int(gl_WorkGroupID.x), int(gl_WorkGroupID.y)) * RK_LUMINANCE_REDUCE_TILE +
@@ -142,6 +148,11 @@ RK_INLINE ivec2 rk_lr_tile_origin()
 /// rk_lr_scratch[out_offset + y * gl_NumWorkGroups.x + x]. With `histogram`, also adds every term's
 /// rk_histogram_bin over [hist_min_log2, hist_max_log2] to rk_lr_histogram (cleared by the host).
 /// `histogram` must be dynamically uniform.
+/// Cost per invocation: RK_LUMINANCE_REDUCE_THREAD_TILE^2 (16 by default) rk_lr_pixel_log2 calls and
+/// adds, one rk_lr_group_sum, 1 SSBO store by invocation 0; with `histogram` also, per pixel,
+/// rk_histogram_bin (1 div) and 1 shared atomicAdd, plus a shared clear (1 barrier) and at most
+/// BINS / THREADS global atomicAdds (one per non-empty bin per workgroup). Per workgroup:
+/// RK_LUMINANCE_REDUCE_TILE^2 = 4096 pixels for one stored float (3840x2160: 60x34 workgroups).
 RK_INLINE void rk_luminance_reduce_image(ivec2 size, int channels, float delta, bool histogram, float hist_min_log2,
                                          float hist_max_log2, uint out_offset)
 {
@@ -187,6 +198,9 @@ RK_INLINE void rk_luminance_reduce_image(ivec2 size, int channels, float delta, 
 /// rk_lr_scratch[in_offset + y * in_size.x + x] and writes one sum per
 /// RK_LUMINANCE_REDUCE_TILE^2 block, as rk_luminance_reduce_image does. Dispatch
 /// ceil(in_size / RK_LUMINANCE_REDUCE_TILE) workgroups; the regions must not overlap.
+/// Cost per invocation: RK_LUMINANCE_REDUCE_THREAD_TILE^2 SSBO loads and adds, one
+/// rk_lr_group_sum, 1 SSBO store by invocation 0. Each pass divides the number of sums by
+/// RK_LUMINANCE_REDUCE_TILE^2 (4096 by default).
 RK_INLINE void rk_luminance_reduce_partials(ivec2 in_size, uint in_offset, uint out_offset)
 {
     ivec2 origin = rk_lr_tile_origin();
@@ -217,6 +231,11 @@ RK_INLINE void rk_luminance_reduce_partials(ivec2 in_size, uint in_offset, uint 
 ///   is set to the target when `reset` or when the state is not a positive number (first frame);
 ///   EV100 and exposure (rk_exposure_from_luminance with ev_compensation) of the adapted value.
 /// This is the same arithmetic as raykit::histogram_stats and the rk_ functions on the CPU.
+/// Cost (serial, one invocation): without `histogram` the log-average, adaptation, EV100 and
+/// exposure functions (a few div, log2, exp2/exp) and 12 buffer accesses (2 loads, 10 stores); with
+/// it, 2 passes over the RK_LUMINANCE_HISTOGRAM_BINS counts (256 by default): a sum, then per bin 2
+/// rk_histogram_bin_edge (1 div each) and rk_histogram_scan_bin (~25 flops), plus 2 exp2 and the
+/// key/white functions: O(bins) latency in one invocation.
 RK_INLINE void rk_luminance_reduce_finish(uint in_offset, float pixel_count, bool histogram, float hist_min_log2,
                                           float hist_max_log2, vec2 window, vec2 robust, bool adapt_to_histogram,
                                           float dt, float tau_up, float tau_down, float ev_compensation, bool reset)
