@@ -87,6 +87,181 @@ TEST(EnvmapCorrection, SigmoidPublishedValues)
     EXPECT_LT(rk_envmap_fahlen_weight(std::cos(1.4f), a, k), std::cos(1.4));
 }
 
+// ---------------------------------------------------------------------------------------------
+// The thesis's correction with an offset (CP != 0), against float64
+
+namespace {
+
+/// Float64 reference of the thesis's street-plane correction, written here from Fahlén 2005
+/// §3.2.4 and seed002.md §3.8 (erratum 6: x is the angle between N and R in radians), not from
+/// envmap_correction.glsl:
+///   R' = R + CP sigma(x) / d,   x = acos(N.R),   sigma(x) = 1 / (1 + e^(-a (x - k))),
+/// thesis constants a = -4.7, k = 0.9, d = 8 m. N.R is clamped to [-1, 1] (acos's domain) and
+/// nothing else: the inputs of the tests below are unit vectors and moderate offsets. `scale`
+/// receives |R| + |CP| sigma / d, the size of the two terms.
+D3 fahlen_ref_at(D3 r, double cos_nr, D3 cp, double d, double a, double k, double& scale)
+{
+    const double x = std::acos(std::max(-1.0, std::min(1.0, cos_nr)));
+    const double sigma = 1.0 / (1.0 + std::exp(-a * (x - k)));
+    scale = dlen(r) + dlen(cp) * sigma / d;
+    return dadd(r, dmul(cp, sigma / d));
+}
+D3 fahlen_ref(D3 r, D3 n, D3 cp, double d, double a, double k, double& scale)
+{
+    return fahlen_ref_at(r, ddot(n, r), cp, d, a, k, scale);
+}
+
+/// Normwise relative error of a float vector against a float64 one: |got - want| / |want|.
+double rel_err(vec3 got, D3 want) { return dlen(dsub(dd(got), want)) / std::max(dlen(want), 1e-300); }
+
+}  // namespace
+
+TEST(EnvmapCorrection, FahlenMatchesFloat64ThesisFormula)
+{
+    // Random unit N and R over the whole sphere (N.R in [-1, 1]: grazing and back-facing R
+    // included), offsets CP up to 50 m in every direction; the thesis overload and the explicit
+    // one with random parameters. A quarter of the cases have R within 0.05 rad of N (near-normal
+    // viewing of a window), where acos is ill-conditioned: the float N.R (a rounding of 6e-8 near
+    // 1) moves the angle by up to sqrt(2 * 6e-8) = 3.5e-4 rad. The error is measured relative to
+    // the size of the terms, |R| + |CP| sigma / d: R' itself can cancel to 0 (CP sigma / d = -R),
+    // where any rounding is a large fraction of |R'|. The same error relative to |R'| is printed
+    // for |R'| >= 0.5. Near normal, the error against the float64 formula evaluated at the float
+    // N.R (the input rounding taken out) is printed too.
+    DirGen gen(13);
+    std::mt19937 rng(14);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    ErrorStats thesis, thesis_rel, params, near_normal, near_params, near_at_float_dot;
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 n = gen();
+        vec3 r = gen();
+        const bool near = i % 4 == 0;
+        if (near) r = glm::normalize(n + 0.05f * u01(rng) * gen());
+        const vec3 cp = gen() * (50.0f * u01(rng));
+        const std::string where = fmt("R", r.x, r.y, r.z, "N", n.x, n.y, n.z, "CP", cp.x, cp.y, cp.z);
+        // Thesis constants (the 3-argument overload).
+        const vec3 got = rk_reflect_correct_fahlen(r, n, cp);
+        double scale = 0;
+        const D3 want = fahlen_ref(dd(r), dd(n), dd(cp), 8.0, -4.7, 0.9, scale);
+        const double e = dlen(dsub(dd(got), want)) / scale;
+        (near ? near_normal : thesis).add(e, 0.0, where);
+        if (!near && dlen(want) >= 0.5) thesis_rel.add(rel_err(got, want), 0.0, where);
+        if (near) {
+            double s2 = 0;
+            const D3 w2 = fahlen_ref_at(dd(r), glm::dot(n, r), dd(cp), 8.0, -4.7, 0.9, s2);
+            near_at_float_dot.add(dlen(dsub(dd(got), w2)) / s2, 0.0, where);
+        }
+        // The 3-argument overload is the 6-argument one at the thesis's constants, bit for bit.
+        const vec3 same = rk_reflect_correct_fahlen(r, n, cp, 8.0f, -4.7f, 0.9f);
+        ASSERT_EQ(got.x, same.x);
+        ASSERT_EQ(got.y, same.y);
+        ASSERT_EQ(got.z, same.z);
+        // Other parameters: d in [2, 40] m, slope a in [-8, -1], midpoint k in [0.3, 1.5] rad.
+        const float d = 2.0f + 38.0f * u01(rng), a = -1.0f - 7.0f * u01(rng), k = 0.3f + 1.2f * u01(rng);
+        const vec3 gp = rk_reflect_correct_fahlen(r, n, cp, d, a, k);
+        const D3 wp = fahlen_ref(dd(r), dd(n), dd(cp), d, a, k, scale);
+        (near ? near_params : params).add(dlen(dsub(dd(gp), wp)) / scale, 0.0, where + fmt("d a k", d, a, k));
+    }
+    std::printf(
+        "fahlen vs float64 R + CP sigma(acos(N.R)) / d, |err| / (|R| + |CP| sigma / d):\n"
+        "  thesis constants, random N, R:              %s\n"
+        "  (the same relative to |R'|, |R'| >= 0.5:     %s)\n"
+        "  random d, a, k, random N, R:                %s\n"
+        "  thesis constants, R within 0.05 rad of N:   %s\n"
+        "  random d, a, k, R within 0.05 rad of N:     %s\n"
+        "  thesis constants, near N, at the float N.R: %s\n",
+        thesis.str().c_str(), thesis_rel.str().c_str(), params.str().c_str(), near_normal.str().c_str(),
+        near_params.str().c_str(), near_at_float_dot.str().c_str());
+    EXPECT_LT(thesis.max_abs, 4e-7) << thesis.worst;
+    EXPECT_LT(thesis_rel.max_abs, 2e-6) << thesis_rel.worst;
+    EXPECT_LT(params.max_abs, 1e-6) << params.worst;
+    // Near normal the input rounding dominates: |sigma'(x)| <= 4.7 sigma(0) (1 - sigma(0)) = 0.0664
+    // near x = 0 times 3.5e-4 rad is 2.3e-5 of the weight, 2.4e-5 of the scale (sigma >= 0.96
+    // there); for a = -8, |sigma'| <= 2 (|a| / 4) allows up to 7e-4 of the weight.
+    EXPECT_LT(near_normal.max_abs, 3e-5) << near_normal.worst;
+    EXPECT_LT(near_params.max_abs, 3e-4) << near_params.worst;
+    EXPECT_LT(near_at_float_dot.max_abs, 4e-7) << near_at_float_dot.worst;
+
+    // Hand-computed values (N = +z, CP = (8, -16, 4) m, so CP / d = (1, -2, 0.5) for d = 8):
+    //  (1) R at 3-4-5 angles, R = (0.6, 0, 0.8): x = acos(0.8) = atan(3/4) = 0.6435011088 rad;
+    //      -a (x - k) = 4.7 (0.6435011088 - 0.9) = -1.2055447887; e^-1.2055447887 = 0.2995287752;
+    //      sigma = 1 / 1.2995287752 = 0.7695097016, so
+    //      R' = (0.6 + sigma, -2 sigma, 0.8 + 0.5 sigma) = (1.3695097016, -1.5390194032, 1.1847548508).
+    //      The mutations give: cos for sigma 0.8 (R'.x = 1.4); sigma of cos x instead of x 0.6154;
+    //      a and k swapped 0.9919; +a instead of -a 0.2305; CP negated R'.x = -0.1695; CP d for
+    //      CP / d R'.x = 0.6 + 64 sigma. All at least 0.03 away from 1.3695097.
+    //  (2) x = k exactly gives sigma = 1/2 whatever a is: R = (sin 0.9, 0, cos 0.9) =
+    //      (0.7833269096, 0, 0.6216099683), R' = R + (0.5, -1, 0.25).
+    const vec3 z(0.0f, 0.0f, 1.0f), cp(8.0f, -16.0f, 4.0f);
+    const vec3 h1 = rk_reflect_correct_fahlen(vec3(0.6f, 0.0f, 0.8f), z, cp);
+    EXPECT_NEAR(h1.x, 1.3695097016, 2e-6);
+    EXPECT_NEAR(h1.y, -1.5390194032, 2e-6);
+    EXPECT_NEAR(h1.z, 1.1847548508, 2e-6);
+    const vec3 h2 = rk_reflect_correct_fahlen(vec3(0.7833269096f, 0.0f, 0.6216099683f), z, cp);
+    EXPECT_NEAR(h2.x, 0.7833269096 + 0.5, 2e-6);
+    EXPECT_NEAR(h2.y, -1.0, 2e-6);
+    EXPECT_NEAR(h2.z, 0.6216099683 + 0.25, 2e-6);
+    // Explicit parameters, same case (1) with d = 4 (CP / d doubles) and k = 0.6435011088 (= x, so
+    // sigma = 1/2 for any a): R' = (0.6 + 1, -2, 0.8 + 0.5).
+    const vec3 h3 = rk_reflect_correct_fahlen(vec3(0.6f, 0.0f, 0.8f), z, cp, 4.0f, -4.7f, 0.6435011088f);
+    EXPECT_NEAR(h3.x, 1.6, 2e-6);
+    EXPECT_NEAR(h3.y, -2.0, 2e-6);
+    EXPECT_NEAR(h3.z, 1.3, 2e-6);
+}
+
+TEST(EnvmapCorrection, FahlenIsThePlaneModelWithSigmaForCos)
+{
+    // envmap_correction.glsl documents rk_reflect_correct_fahlen as rk_reflect_correct_plane_cos
+    // with N.R replaced by sigma(angle(N, R)): both move R along CP, by sigma(x) / d and cos(x) / d.
+    // Check the ratio of the two offsets against float64 sigma(x) / cos(x) where N.R >= 0.05, and
+    // that behind the window (N.R < 0) plane_cos's weight is clamped to 0 while the sigmoid's
+    // continues (sigma(pi/2) = 0.04098 down to sigma(pi) = 2.66e-5).
+    DirGen gen(15);
+    std::mt19937 rng(16);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    ErrorStats ratio, plane;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 n = gen(), r = gen();
+        const vec3 cp = gen() * (1.0f + 49.0f * u01(rng));
+        const vec3 f = rk_reflect_correct_fahlen(r, n, cp);
+        const vec3 p = rk_reflect_correct_plane_cos(r, n, cp, 8.0f);
+        const double c = ddot(dd(n), dd(r));
+        // plane_cos against its float64 formula R + CP max(N.R, 0) / d (the thesis's un-tweaked model).
+        const D3 pw = dadd(dd(r), dmul(dd(cp), std::max(c, 0.0) / 8.0));
+        const std::string where = fmt("R", r.x, r.y, r.z, "N", n.x, n.y, n.z, "CP", cp.x, cp.y, cp.z);
+        plane.add(dlen(dsub(dd(p), pw)) / (1.0 + dlen(dd(cp)) * std::max(c, 0.0) / 8.0), 0.0, where);
+        const D3 df = dsub(dd(f), dd(r)), dp = dsub(dd(p), dd(r));
+        if (c < -1e-6) {
+            ASSERT_EQ(dlen(dp), 0.0) << where;  // plane_cos returns R itself
+            // The sigmoid's weight in (sigma(pi), sigma(pi/2)), read back from the float result
+            // (whose rounding is up to 3% of the offset for the smallest |CP| here).
+            const double w = ddot(df, dd(cp)) / ddot(dd(cp), dd(cp)) * 8.0;
+            ASSERT_GT(w, 2.0e-5) << where;
+            ASSERT_LT(w, 0.0411) << where;
+            continue;
+        }
+        if (c < 0.05) continue;
+        const double x = std::acos(std::min(c, 1.0));
+        const double want = (1.0 / (1.0 + std::exp(4.7 * (x - 0.9)))) / c;
+        // ratio of the offsets along CP (both are multiples of CP up to rounding)
+        ratio.add(ddot(df, dd(cp)) / ddot(dp, dd(cp)) / want - 1.0, 0.0, where);
+    }
+    std::printf(
+        "plane_cos vs float64 R + CP max(N.R, 0) / d, |err| / (|R| + |CP| max(N.R, 0) / d): %s\n"
+        "fahlen offset / plane_cos offset vs float64 sigma(x) / cos(x), relative: %s\n",
+        plane.str().c_str(), ratio.str().c_str());
+    EXPECT_LT(plane.max_abs, 1e-6) << plane.worst;
+    EXPECT_LT(ratio.max_abs, 2e-5) << ratio.worst;
+    // sigma < cos below 87.04 degrees (1.5191 rad), sigma > cos beyond: at grazing the thesis's
+    // weight stays sigma(pi/2) = 0.04098 where plane_cos's reaches 0.
+    const vec3 z(0.0f, 0.0f, 1.0f), cp(8.0f, 0.0f, 0.0f);
+    EXPECT_LT(rk_reflect_correct_fahlen(vec3(std::sin(1.5f), 0.0f, std::cos(1.5f)), z, cp).x,
+              rk_reflect_correct_plane_cos(vec3(std::sin(1.5f), 0.0f, std::cos(1.5f)), z, cp, 8.0f).x);
+    EXPECT_GT(rk_reflect_correct_fahlen(vec3(std::sin(1.54f), 0.0f, std::cos(1.54f)), z, cp).x,
+              rk_reflect_correct_plane_cos(vec3(std::sin(1.54f), 0.0f, std::cos(1.54f)), z, cp, 8.0f).x);
+    EXPECT_NEAR(rk_reflect_correct_fahlen(vec3(1.0f, 0.0f, 0.0f), z, cp).x, 1.0 + 0.0409833, 1e-6);
+    EXPECT_EQ(rk_reflect_correct_plane_cos(vec3(1.0f, 0.0f, 0.0f), z, cp, 8.0f).x, 1.0f);
+}
+
 TEST(EnvmapCorrection, ZeroOffsetKeepsTheDirection)
 {
     DirGen gen(3);
@@ -309,6 +484,79 @@ TEST(WindowGlass, CombineAndShade)
     const vec3 back = rk_window_glass_shade(nrm, vec3(v.x, v.y, -v.z), refl, inter, tint, 1.52f, 1.0f);
     EXPECT_NEAR(back.y, s.y, 1e-7);
     EXPECT_NEAR(rk_window_glass_cos(nrm, v), 0.8, 1e-7);
+}
+
+namespace {
+/// Float64 pane reflectance, per polarisation (the default build's model, RK_FRESNEL_WINDOW_MODE 2):
+/// the complex-amplitude Fresnel of reference/fresnel_ref.hpp, then the slab 2R / (1 + R) of each
+/// polarisation (thesis Eq. 3.8, seed002.md erratum 5), averaged.
+double pane_ref(double c, double eta)
+{
+    const auto sp = ref::fresnel_sp(c, ref::cd(eta, 0.0));
+    return 0.5 * (2.0 * sp.first / (1.0 + sp.first) + 2.0 * sp.second / (1.0 + sp.second));
+}
+}  // namespace
+
+TEST(WindowGlass, AgainstFloat64)
+{
+    DirGen gen(23);
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    // rk_window_glass_reflectance (default build) against the float64 pane, n = 1.52 and n in
+    // [1.2, 2.4], cos over [0, 1].
+    ErrorStats refl152, refl_any;
+    for (int i = 0; i <= 100000; ++i) {
+        const float c = static_cast<float>(i) / 100000.0f;
+        refl152.add(rk_window_glass_reflectance(c, 1.52f, 1.0f), pane_ref(c, 1.52), fmt("cos", c));
+        const float eta = 1.2f + 1.2f * u01(rng), c2 = u01(rng);
+        refl_any.add(rk_window_glass_reflectance(c2, eta, 1.0f), pane_ref(c2, eta), fmt("cos", c2, "eta", eta));
+    }
+    // rk_window_glass_cos against float64 |N.V| of the same float unit vectors.
+    ErrorStats cosv;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 n = gen(), v = gen();
+        const float got = rk_window_glass_cos(n, v);
+        const double want = std::abs(ddot(dd(n), dd(v)));
+        cosv.add(got, want, fmt("N", n.x, n.y, n.z, "V", v.x, v.y, v.z));
+    }
+    // rk_window_glass_combine against float64 r refl + (1 - r) tint interior (HDR radiances up to
+    // 1e4, every term >= 0: no cancellation, so the relative error per channel is meaningful), and
+    // rk_window_glass_shade against the whole chain in float64 (|N.V|, pane_ref, combine).
+    ErrorStats comb, shade;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 refl = vec3(u01(rng), u01(rng), u01(rng)) * std::exp2(-10.0f + 23.0f * u01(rng));
+        const vec3 inter = vec3(u01(rng), u01(rng), u01(rng)) * std::exp2(-10.0f + 23.0f * u01(rng));
+        const vec3 tint(u01(rng), u01(rng), u01(rng));
+        const float r = u01(rng);
+        const vec3 got = rk_window_glass_combine(refl, inter, r, tint);
+        for (int ch = 0; ch < 3; ++ch) {
+            const double want = static_cast<double>(r) * refl[ch] +
+                                (1.0 - static_cast<double>(r)) * static_cast<double>(tint[ch]) * inter[ch];
+            comb.add(std::abs(got[ch] - want) / std::max(want, 1e-300), 0.0, fmt("ch", ch, "r", r),
+                     rktest::ulp_error(got[ch], want));
+        }
+        const vec3 n = gen(), v = gen();
+        const vec3 sh = rk_window_glass_shade(n, v, refl, inter, tint, 1.52f, 1.0f);
+        const double rr = pane_ref(std::abs(ddot(dd(n), dd(v))), 1.52);
+        for (int ch = 0; ch < 3; ++ch) {
+            const double want = rr * refl[ch] + (1.0 - rr) * static_cast<double>(tint[ch]) * inter[ch];
+            // Relative to refl + tint interior, the largest the output can be: near grazing 1 - R is
+            // small and its relative error large (the float N.V's rounding of 1e-7 alone is 0.1% of
+            // 1 - R at N.V = 1e-4), but its absolute error stays that of R.
+            const double bound = static_cast<double>(refl[ch]) + static_cast<double>(tint[ch]) * inter[ch];
+            shade.add(std::abs(sh[ch] - want) / std::max(bound, 1e-300), 0.0,
+                      fmt("ch", ch, "N.V", glm::dot(n, v), "refl", refl[ch], "inter", inter[ch], "tint", tint[ch]));
+        }
+    }
+    std::printf(
+        "window glass vs float64:\n  reflectance, n = 1.52, abs: %s\n  reflectance, n in [1.2, 2.4], abs: %s\n"
+        "  cos |N.V|, abs: %s\n  combine, relative: %s\n  shade (n = 1.52), |err| / (refl + tint interior): %s\n",
+        refl152.str().c_str(), refl_any.str().c_str(), cosv.str().c_str(), comb.str().c_str(), shade.str().c_str());
+    EXPECT_LT(refl152.max_abs, 1e-6) << refl152.worst;
+    EXPECT_LT(refl_any.max_abs, 1e-6) << refl_any.worst;
+    EXPECT_LT(cosv.max_abs, 2e-7) << cosv.worst;
+    EXPECT_LT(comb.max_ulp, 4.0) << comb.worst_ulp;
+    EXPECT_LT(shade.max_abs, 1e-6) << shade.worst;
 }
 
 TEST(WindowGlass, AbsorbingSlabMatchesSeries)

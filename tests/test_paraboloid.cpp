@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <functional>
 #include <limits>
@@ -445,6 +446,86 @@ TEST(DualParaboloid, GuardKeepsEveryTapInItsHalf)
 }
 
 // ---------------------------------------------------------------------------------------------
+// The atlas layout, pinned independently of the code under test
+
+namespace {
+/// The unit direction stored at atlas coordinates (u, v), in float64, written from the layout the
+/// header of shaders/raykit/paraboloid.glsl documents (not from rk_dual_paraboloid_dir):
+///  - a 2H x H texture, left half (u < 0.5) the +z hemisphere (hemi = +1), right half -z;
+///  - inside a half uv_half = 0.5 + 0.5 g st, u = uv_half.x / 2 (+ 0.5 for the right half),
+///    v = uv_half.y (v = 0 the first row);
+///  - st = (x, y) / (1 + hemi z) for the unit direction (x, y, z): the stereographic projection from
+///    the pole -hemi z. Its inverse: with q = 1 + s^2 + t^2, (x, y) = 2 (s, t) / q and
+///    hemi z = (1 - s^2 - t^2) / q (substitute: 1 + hemi z = 2 / q, so (x, y) = st (1 + hemi z)).
+///  Points with |st| > 1 (the guard ring) continue the same formula into the other hemisphere.
+D3 atlas_dir_ref(double u, double v, double g)
+{
+    const bool left = u < 0.5;
+    const double hemi = left ? 1.0 : -1.0;
+    const double uh = left ? 2.0 * u : 2.0 * u - 1.0;  // u within its half, [0, 1]
+    const double s = (2.0 * uh - 1.0) / g, t = (2.0 * v - 1.0) / g;
+    const double q = 1.0 + s * s + t * t;
+    return {2.0 * s / q, 2.0 * t / q, hemi * (1.0 - s * s - t * t) / q};
+}
+double angle_between(vec3 a, D3 y)
+{
+    const D3 x = to_d(a);
+    const double cx = x.y * y.z - x.z * y.y, cy = x.z * y.x - x.x * y.z, cz = x.x * y.y - x.y * y.x;
+    return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), x.x * y.x + x.y * y.y + x.z * y.z);
+}
+}  // namespace
+
+TEST(DualParaboloid, AtlasLayoutPinnedByHand)
+{
+    // Guard scale g = 0.9375 (H = 64, max_lod 2: footprint 0.5 * 2^2 = 2 texels, g = 1 - 2 * 2 / 64).
+    // From the layout above, for the six axes (a direction with z = 0 uses the left half):
+    //   +z: left, st = (0, 0) / (1 + 1) = (0, 0), uv_half = (0.5, 0.5), u = 0.5 / 2 = 0.25, v = 0.5
+    //   -z: right, hemi = -1: st = (0, 0) / (1 + (-1)(-1)) = (0, 0), u = 0.5 + 0.25 = 0.75, v = 0.5
+    //   +x: left, st = (1, 0) / (1 + 0) = (1, 0): uv_half.x = 0.5 + 0.5 g = 0.96875, u = 0.484375
+    //   -x: left, st = (-1, 0): uv_half.x = 0.5 - 0.5 g = 0.03125, u = 0.015625, v = 0.5
+    //   +y: left, st = (0, 1): u = 0.25, v = 0.5 + 0.5 g = 0.96875 (+y towards the last row)
+    //   -y: left, st = (0, -1): u = 0.25, v = 0.03125
+    // and in the right half, (1, 0, -1) / sqrt 2: st.x = (1 / sqrt 2) / (1 + 1 / sqrt 2) = sqrt 2 - 1
+    // = 0.41421356, uv_half.x = 0.5 + 0.5 g (sqrt 2 - 1) = 0.69416261, u = 0.5 + 0.34708130 =
+    // 0.84708130: s grows with x in both halves (the +z half is the mirrored one, seen from inside).
+    // (0, 1, -1) / sqrt 2 likewise: u = 0.75, v = 0.69416261.
+    const float g = rk_dual_paraboloid_guard_scale(64.0f, rk_paraboloid_filter_footprint(2.0f));
+    ASSERT_EQ(g, 0.9375f);
+    const float r2 = 0.70710678f;
+    struct Pin {
+        vec3 dir;
+        double u, v;
+    };
+    const Pin pins[] = {{{0.0f, 0.0f, 1.0f}, 0.25, 0.5},        {{0.0f, 0.0f, -1.0f}, 0.75, 0.5},
+                        {{1.0f, 0.0f, 0.0f}, 0.484375, 0.5},    {{-1.0f, 0.0f, 0.0f}, 0.015625, 0.5},
+                        {{0.0f, 1.0f, 0.0f}, 0.25, 0.96875},    {{0.0f, -1.0f, 0.0f}, 0.25, 0.03125},
+                        {{r2, 0.0f, -r2}, 0.84708130, 0.5},     {{0.0f, r2, -r2}, 0.75, 0.69416261}};
+    for (const Pin& p : pins) {
+        const vec2 uv = rk_dual_paraboloid_uv(p.dir, g);
+        EXPECT_NEAR(uv.x, p.u, 1e-7) << fmt(p.dir.x, p.dir.y, p.dir.z);
+        EXPECT_NEAR(uv.y, p.v, 1e-7) << fmt(p.dir.x, p.dir.y, p.dir.z);
+        // The float64 layout agrees with the pins, and so does the inverse under test.
+        EXPECT_LT(angle_between(p.dir, atlas_dir_ref(p.u, p.v, 0.9375)), 1e-7) << fmt(p.dir.x, p.dir.y, p.dir.z);
+        const vec3 back = rk_dual_paraboloid_dir(vec2(static_cast<float>(p.u), static_cast<float>(p.v)), g);
+        EXPECT_LT(angle_between(back, to_d(p.dir)), 1e-6) << fmt(p.dir.x, p.dir.y, p.dir.z);
+    }
+    // A guard-band texel: texel (0, 32) of the 128 x 64 atlas, uv = (0.5 / 128, 32.5 / 64): left half,
+    // u_half = 1 / 128, s = (2 / 128 - 1) / g = -1.05 = -21/20, t = (65 / 64 - 1) / g = 1/60. q = 1 +
+    // 441/400 + 1/3600 = 757/360, so dir = (-756, 12, -37) / 757 (756^2 + 12^2 + 37^2 = 757^2): past
+    // the rim, z < 0, stored in the +z half (the continuation).
+    const D3 guard{-756.0 / 757.0, 12.0 / 757.0, -37.0 / 757.0};
+    EXPECT_LT(angle_between(rk_dual_paraboloid_dir(vec2(0.5f / 128.0f, 32.5f / 64.0f), g), guard), 1e-6);
+    EXPECT_LT(dist(rk_dual_paraboloid_dir(vec2(0.5f / 128.0f, 32.5f / 64.0f), g),
+                   atlas_dir_ref(0.5 / 128, 32.5 / 64, 0.9375)),
+              1e-6);
+    // The seam: u just below 0.5 is the left half's right edge (st.x = 1 / g, past +x's rim, z < 0),
+    // u just above 0.5 the right half's left edge (st.x = -1 / g, near -x). Not neighbours on the
+    // sphere: only the guard keeps filters from mixing them.
+    EXPECT_GT(rk_dual_paraboloid_dir(vec2(0.4999f, 0.5f), g).x, 0.99f);
+    EXPECT_LT(rk_dual_paraboloid_dir(vec2(0.5001f, 0.5f), g).x, -0.99f);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Baking
 
 TEST(Bake, SelfDirectionCubeConvertsToSelfDirectionParaboloid)
@@ -463,23 +544,52 @@ TEST(Bake, SelfDirectionCubeConvertsToSelfDirectionParaboloid)
     ASSERT_EQ(map.levels.size(), 3u);
     EXPECT_EQ(map.levels[0].width, 128);
     EXPECT_EQ(map.levels[2].width, 32);
+    // Expected texel directions in float64 from the atlas layout documented in the header of
+    // shaders/raykit/paraboloid.glsl (not from rk_dual_paraboloid_dir, which the baker uses).
+    ASSERT_EQ(map.guard_scale, 0.9375f);  // 1 - 2 footprint / H, footprint 0.5 * 2^ceil(2) = 2 texels
+    const double g = 0.9375;
     double worst = 0, worst_rel = 0;
+    int worst_i = -1, worst_j = -1;
     for (int j = 0; j < map.levels[0].height; ++j) {
         for (int i = 0; i < map.levels[0].width; ++i) {
-            const vec2 uv((static_cast<float>(i) + 0.5f) / 128.0f, (static_cast<float>(j) + 0.5f) / 64.0f);
-            const vec3 want = rk_dual_paraboloid_dir(uv, map.guard_scale);
+            const double u = (i + 0.5) / 128.0, v = (j + 0.5) / 64.0;
+            const D3 want = atlas_dir_ref(u, v, g);
             const double err = angle_between(map.levels[0].texel(i, j), want);
-            const float st_r =
-                std::hypot(2.0f * (uv.x * 2.0f - (uv.x < 0.5f ? 0.0f : 1.0f)) - 1.0f, 2.0f * uv.y - 1.0f) /
-                map.guard_scale;
-            const double texel = rk_paraboloid_texel_angle(vec2(st_r, 0.0f), 64.0f, map.guard_scale);
+            // One texel spans 2 / (g H) of st, one unit of st 2 / (1 + s^2 + t^2) rad at (s, t).
+            const double uh = u < 0.5 ? 2.0 * u : 2.0 * u - 1.0;
+            const double s = (2.0 * uh - 1.0) / g, t = (2.0 * v - 1.0) / g;
+            const double texel = 4.0 / ((1.0 + s * s + t * t) * g * 64.0);
             worst = std::max(worst, err);
-            worst_rel = std::max(worst_rel, err / texel);
+            if (err / texel > worst_rel) {
+                worst_rel = err / texel;
+                worst_i = i;
+                worst_j = j;
+            }
         }
     }
-    std::printf("self-direction cube (64) -> dual paraboloid (2 x 64^2): max angle error %.3g rad = %.3g texels\n",
-                worst, worst_rel);
+    std::printf(
+        "self-direction cube (64) -> dual paraboloid (2 x 64^2) vs the float64 atlas layout: max angle error %.3g "
+        "rad = %.3g texels (worst texel %d, %d)\n",
+        worst, worst_rel, worst_i, worst_j);
     EXPECT_LT(worst_rel, 0.1);  // a tenth of a texel, guard band included (the box filter's bias)
+    // The hand-derived positions of DualParaboloid.AtlasLayoutPinnedByHand hold those directions in
+    // the baked map: +z at uv (0.25, 0.5), -z (0.75, 0.5), +x (0.484375, 0.5), -x (0.015625, 0.5),
+    // +y (0.25, 0.96875), -y (0.25, 0.03125) (bilinear between the four nearest texels), and the
+    // guard-band texel (0, 32) holds (-756, 12, -37) / 757. Within a tenth of the local texel angle
+    // 4 / ((1 + |st|^2) g H): 0.0667 rad at the centre, 0.0333 on the rim, 0.0317 at |st| = 1.05.
+    const struct {
+        vec2 uv;
+        D3 dir;
+        double texel;
+    } baked_pins[] = {{{0.25f, 0.5f}, {0, 0, 1}, 4.0 / (g * 64)},     {{0.75f, 0.5f}, {0, 0, -1}, 4.0 / (g * 64)},
+                      {{0.484375f, 0.5f}, {1, 0, 0}, 2.0 / (g * 64)}, {{0.015625f, 0.5f}, {-1, 0, 0}, 2.0 / (g * 64)},
+                      {{0.25f, 0.96875f}, {0, 1, 0}, 2.0 / (g * 64)}, {{0.25f, 0.03125f}, {0, -1, 0}, 2.0 / (g * 64)}};
+    for (const auto& p : baked_pins) {
+        EXPECT_LT(angle_between(sample_image_bilinear(map.levels[0], p.uv), p.dir), 0.1 * p.texel)
+            << fmt(p.uv.x, p.uv.y);
+    }
+    EXPECT_LT(angle_between(map.levels[0].texel(0, 32), D3{-756.0 / 757.0, 12.0 / 757.0, -37.0 / 757.0}),
+              0.1 * 4.0 / ((757.0 / 360.0) * g * 64));
     EnvImage mip1 = downsample_box(map.levels[0]);
     EXPECT_EQ(mip1.rgb, map.levels[1].rgb);
     // And back: paraboloid -> cube, texels decode to their own direction.
@@ -680,6 +790,304 @@ TEST(Paraboloid, BrabecProjection)
     EXPECT_NEAR(rk_paraboloid_clip_distance(edge * 10.0f, 1.0f, g), 0.0, 1e-5);
     EXPECT_NEAR(rk_paraboloid_clip_distance(vec3(1.0f, 0.0f, 0.0f), 1.0f, 1.0f), 0.0, 0.0);  // g = 1: the plane z = 0
     EXPECT_EQ(rk_paraboloid_project(vec3(0.0f), zn, zf, 1.0f, g).z, -2.0f);
+}
+
+TEST(Paraboloid, ProjectionAndDepthAgainstFloat64)
+{
+    // rk_paraboloid_project against float64 from Brabec's formulas written here: xy = g (x, y) /
+    // (|p| + hemi z) (the paraboloid coordinates of p / |p|), z = 2 (|p| - near) / (far - near) - 1;
+    // positions at 1e-3..1e4 from the centre in the half's hemisphere, near in [0.01, 1], far in
+    // [near + 1, 1e4]. And rk_paraboloid_depth_decode against near + depth (far - near).
+    DirGen gen(62);
+    std::mt19937 rng(63);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    ErrorStats xy, zs, dec;
+    for (int i = 0; i < 100000; ++i) {
+        const float hemi = i % 2 ? 1.0f : -1.0f;
+        vec3 d = gen();
+        if (d.z * hemi < 0.0f) d.z = -d.z;
+        const vec3 p = d * std::exp2(-10.0f + 23.3f * u01(rng));
+        const float zn = 0.01f + 0.99f * u01(rng), zf = zn + 1.0f + 1e4f * u01(rng);
+        const float g = 0.5f + 0.5f * u01(rng);
+        const vec4 c = rk_paraboloid_project(p, zn, zf, hemi, g);
+        const double L = std::sqrt(static_cast<double>(p.x) * p.x + static_cast<double>(p.y) * p.y +
+                                   static_cast<double>(p.z) * p.z);
+        const double den = L + static_cast<double>(hemi) * p.z;
+        const std::string where = fmt("p", p.x, p.y, p.z, "hemi", hemi, "g", g, "near far", zn, zf);
+        xy.add(std::hypot(c.x - static_cast<double>(g) * p.x / den, c.y - static_cast<double>(g) * p.y / den), 0.0,
+               where);
+        const double zw = 2.0 * (L - zn) / (static_cast<double>(zf) - zn) - 1.0;  // beyond far: > 1
+        zs.add(std::abs(c.z - zw) / std::max(1.0, std::abs(zw)), 0.0, where);
+        const float depth = -0.5f + 2.0f * u01(rng);
+        const double want = zn + static_cast<double>(depth) * (static_cast<double>(zf) - zn);
+        dec.add(std::abs(rk_paraboloid_depth_decode(depth, zn, zf) - want) / zf, 0.0, fmt("depth", depth, zn, zf));
+    }
+    std::printf(
+        "Brabec projection vs float64: |xy error| %s\n                              |z error| / max(1, |z|) %s\n"
+        "depth decode vs float64, |err| / far: %s\n",
+        xy.str().c_str(), zs.str().c_str(), dec.str().c_str());
+    EXPECT_LT(xy.max_abs, 3e-7) << xy.worst;
+    EXPECT_LT(zs.max_abs, 4e-7) << zs.worst;
+    EXPECT_LT(dec.max_abs, 2e-7) << dec.worst;
+}
+
+TEST(DualParaboloid, UvDifferentialAgainstComplexStep)
+{
+    // rk_dual_paraboloid_uv_differential against the float64 derivative of the documented atlas
+    // coordinates u = (0.5 + 0.5 g s) / 2 (+ 0.5), v = 0.5 + 0.5 g t, st = (x, y) / (|w| + hemi z) of
+    // w = dir, hemi by the sign of dir.z: the complex-step derivative Im f(w + i h dw) / h, exact to
+    // float64 rounding (no subtraction, so no truncation/cancellation trade-off), with no Jacobian
+    // written by hand. Random directions over the whole sphere at scales 2^-20..2^20.
+    DirGen gen(64);
+    std::mt19937 rng(65);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    using cd = std::complex<double>;
+    ErrorStats rel, norm;
+    for (int i = 0; i < 100000; ++i) {
+        const vec3 d = gen();
+        const double scale = std::exp2(u(rng) * 20.0);
+        const vec3 w = d * static_cast<float>(scale);
+        const vec3 dw(static_cast<float>(u(rng) * scale), static_cast<float>(u(rng) * scale),
+                      static_cast<float>(u(rng) * scale));
+        const float g = 0.5f + 0.5f * static_cast<float>(std::abs(u(rng)));
+        const vec2 got = rk_dual_paraboloid_uv_differential(w, dw, g);
+        const double hemi = w.z > 0.0f ? 1.0 : -1.0;
+        const double h = 1e-40;
+        const cd x(w.x, h * dw.x), y(w.y, h * dw.y), z(w.z, h * dw.z);
+        const cd len = std::sqrt(x * x + y * y + z * z);
+        const cd s = x / (len + hemi * z), t = y / (len + hemi * z);
+        const double du = 0.25 * g * s.imag() / h, dv = 0.5 * g * t.imag() / h;
+        const double err = std::hypot(got.x - du, got.y - dv);
+        const std::string where = fmt("w", w.x, w.y, w.z, "dw", dw.x, dw.y, dw.z, "g", g);
+        rel.add(err / std::max(std::hypot(du, dv), 1e-300), 0.0, where);
+        // Relative to the largest the derivative can be for this |dw|: the stereographic projection
+        // scales angles by (1 + s^2 + t^2) / 2 <= 1 in the hemisphere, so |d st| <= |dw| / |w|,
+        // and |d uv| <= 0.5 g |d st|. The plain relative error above grows where dw is nearly
+        // parallel to w (only its small perpendicular part moves the direction).
+        const double wl = std::sqrt(static_cast<double>(glm::dot(w, w)));
+        const double dl = std::sqrt(static_cast<double>(glm::dot(dw, dw)));
+        norm.add(err / (0.5 * static_cast<double>(g) * dl / wl), 0.0, where);
+        ASSERT_LE(std::hypot(du, dv), 0.5 * static_cast<double>(g) * dl / wl * (1.0 + 1e-12)) << where;
+    }
+    std::printf(
+        "atlas uv differential vs float64 complex step: |err| / (0.5 g |dw| / |w|) %s\n"
+        "                                               |err| / |d uv| %s\n",
+        norm.str().c_str(), rel.str().c_str());
+    EXPECT_LT(norm.max_abs, 1e-6) << norm.worst;
+    EXPECT_LT(rel.max_abs, 1e-4) << rel.worst;
+}
+
+namespace {
+/// Float64 octahedral encoding of Cigolle et al. 2014 (their listing; signNotZero(0) = +1):
+/// p = (x, y) / (|x| + |y| + |z|), and for z < 0 the folded ((1 - |p.y|) sgn p.x, (1 - |p.x|) sgn p.y).
+std::pair<double, double> oct_encode_ref(D3 d)
+{
+    const double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    double px = d.x / l1, py = d.y / l1;
+    if (d.z < 0.0) {
+        const double fx = (1.0 - std::abs(py)) * (px >= 0.0 ? 1.0 : -1.0);
+        const double fy = (1.0 - std::abs(px)) * (py >= 0.0 ? 1.0 : -1.0);
+        px = fx;
+        py = fy;
+    }
+    return {px, py};
+}
+/// Its inverse: v = (p.x, p.y, 1 - |p.x| - |p.y|), unfolded for v.z < 0, normalised.
+D3 oct_decode_ref(double px, double py)
+{
+    double x = px, y = py;
+    const double z = 1.0 - std::abs(px) - std::abs(py);
+    if (z < 0.0) {
+        x = (1.0 - std::abs(py)) * (px >= 0.0 ? 1.0 : -1.0);
+        y = (1.0 - std::abs(px)) * (py >= 0.0 ? 1.0 : -1.0);
+    }
+    const double l = std::sqrt(x * x + y * y + z * z);
+    return {x / l, y / l, z / l};
+}
+/// A direction on a GL cube face (GL 4.6 table 8.19 inverted) at face coordinates sc, tc in [-1, 1].
+D3 cube_dir_ref(int face, double sc, double tc)
+{
+    const D3 v = face == 0 ? D3{1, -tc, -sc}
+                 : face == 1 ? D3{-1, -tc, sc}
+                 : face == 2 ? D3{sc, 1, tc}
+                 : face == 3 ? D3{sc, -1, -tc}
+                 : face == 4 ? D3{sc, -tc, 1}
+                             : D3{-sc, -tc, -1};
+    const double l = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    return {v.x / l, v.y / l, v.z / l};
+}
+}  // namespace
+
+TEST(Octahedral, EncodeDecodeAgainstFloat64)
+{
+    DirGen gen(66);
+    std::mt19937 rng(67);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    ErrorStats enc, dec, rt;
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 d = gen();
+        const vec2 p = octahedral_encode(d);
+        const auto want = oct_encode_ref(to_d(d));
+        enc.add(std::max(std::abs(p.x - want.first), std::abs(p.y - want.second)), 0.0, fmt(d.x, d.y, d.z));
+        rt.add(angle_between(octahedral_decode(p), to_d(d)), 0.0, fmt(d.x, d.y, d.z));
+        const vec2 q(u(rng), u(rng));
+        dec.add(angle_between(octahedral_decode(q), oct_decode_ref(q.x, q.y)), 0.0, fmt(q.x, q.y));
+    }
+    std::printf(
+        "octahedral vs float64: encode max |dp| %s\n                       decode angle %s\n"
+        "                       dir -> p -> dir angle %s\n",
+        enc.str().c_str(), dec.str().c_str(), rt.str().c_str());
+    EXPECT_LT(enc.max_abs, 3e-7) << enc.worst;
+    EXPECT_LT(dec.max_abs, 3e-7) << dec.worst;
+    EXPECT_LT(rt.max_abs, 5e-7) << rt.worst;
+    // Hand values: +z at the centre, -z at the corners (folded), +x at (1, 0), (1, 1, 0) / sqrt 2 at
+    // (0.5, 0.5), (1, 1, -1) / sqrt 3: p = (1/3, 1/3) folds to (2/3, 2/3).
+    EXPECT_EQ(octahedral_encode(vec3(0.0f, 0.0f, 1.0f)), vec2(0.0f, 0.0f));
+    EXPECT_EQ(octahedral_encode(vec3(0.0f, 0.0f, -1.0f)), vec2(1.0f, 1.0f));
+    EXPECT_EQ(octahedral_encode(vec3(1.0f, 0.0f, 0.0f)), vec2(1.0f, 0.0f));
+    const vec2 h = octahedral_encode(vec3(1.0f, 1.0f, 0.0f));
+    EXPECT_NEAR(h.x, 0.5, 1e-7);
+    EXPECT_NEAR(h.y, 0.5, 1e-7);
+    const vec2 f = octahedral_encode(vec3(1.0f, 1.0f, -1.0f));
+    EXPECT_NEAR(f.x, 2.0 / 3.0, 1e-7);
+    EXPECT_NEAR(f.y, 2.0 / 3.0, 1e-7);
+    EXPECT_EQ(octahedral_encode(vec3(0.0f)), vec2(0.0f, 0.0f));  // zero: the +z pole
+    // Outside [-1, 1]^2 decode clamps.
+    EXPECT_LT(angle_between(octahedral_decode(vec2(5.0f, 0.0f)), D3{1, 0, 0}), 1e-7);
+}
+
+TEST(Bake, BilinearAgainstFloat64)
+{
+    // sample_image_bilinear against float64 bilinear interpolation written from GL's GL_LINEAR
+    // (texel centres at (i + 0.5) / size, clamp to edge) on a random 128 x 64 image in [0, 1], uv in
+    // [-0.1, 1.1]^2 (edges and beyond included). uv * size is exact for these power-of-two sizes;
+    // for other sizes its rounding (an ulp of x) moves the weights by as much, times the local
+    // texel difference.
+    std::mt19937 rng(68);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f), uu(-0.1f, 1.1f);
+    EnvImage img(128, 64);
+    for (float& c : img.rgb) c = u01(rng);
+    ErrorStats bil;
+    for (int i = 0; i < 200000; ++i) {
+        const vec2 uv(uu(rng), uu(rng));
+        const vec3 got = sample_image_bilinear(img, uv);
+        const double x = static_cast<double>(uv.x) * 128.0 - 0.5, y = static_cast<double>(uv.y) * 64.0 - 0.5;
+        const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
+        const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+        auto at = [&](int a, int b, int c) {
+            return static_cast<double>(img.texel(std::clamp(a, 0, 127), std::clamp(b, 0, 63))[c]);
+        };
+        for (int c = 0; c < 3; ++c) {
+            const double want = (1 - ay) * ((1 - ax) * at(x0, y0, c) + ax * at(x0 + 1, y0, c)) +
+                                ay * ((1 - ax) * at(x0, y0 + 1, c) + ax * at(x0 + 1, y0 + 1, c));
+            bil.add(got[c], want, fmt(uv.x, uv.y));
+        }
+    }
+    std::printf("bilinear (128 x 64, values in [0, 1]) vs float64: %s\n", bil.str().c_str());
+    EXPECT_LT(bil.max_abs, 1e-5) << bil.worst;
+    // Texel centres return the texel exactly.
+    EXPECT_EQ(sample_image_bilinear(img, vec2(10.5f / 128.0f, 20.5f / 64.0f)), img.texel(10, 20));
+}
+
+TEST(Bake, SelfDirectionMapsTexelsAndLookups)
+{
+    // Each baker with env(d) = d: with one sample per texel every texel holds the float64 direction
+    // of its centre from the documented layout (the bakers' only error is float rounding); with
+    // 4 x 4 supersampling the box filter's mean of unit vectors is slightly shorter and off-centre.
+    // Then each lookup of such a map against the looked-up direction (bilinear interpolation of
+    // unit vectors: a second-order error), max over random directions, in radians and in the map's
+    // texels (the largest angle between neighbouring texel centres, see below).
+    const int n = 64;
+    double worst[6] = {0, 0, 0, 0, 0, 0};  // cube ss1, cube ss4, paraboloid ss1, ss4, octahedral ss1, ss4
+    for (int ssi = 0; ssi < 2; ++ssi) {
+        const int ss = ssi == 0 ? 1 : 4;
+        const EnvCubeMap cube = bake_cube_map(n, identity_env, ss);
+        const EnvImage para = bake_paraboloid_fn(identity_env, n, mat3(1.0f), -1.0f, 1.0f, ss);
+        const OctahedralMap oct = bake_octahedral_fn(n, identity_env, ss);
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                const double sc = 2.0 * (i + 0.5) / n - 1.0, tc = 2.0 * (j + 0.5) / n - 1.0;
+                for (int face = 0; face < 6; ++face) {
+                    worst[ssi] = std::max(worst[ssi], angle_between(cube.faces[static_cast<size_t>(face)].texel(i, j),
+                                                                    cube_dir_ref(face, sc, tc)));
+                }
+                // Single paraboloid, hemi = -1, g = 1: st = 2 uv - 1, dir = (2s, 2t, -(1 - s^2 - t^2)) / q.
+                const double q = 1.0 + sc * sc + tc * tc;
+                const D3 pd{2 * sc / q, 2 * tc / q, -(1 - sc * sc - tc * tc) / q};
+                worst[2 + ssi] = std::max(worst[2 + ssi], angle_between(para.texel(i, j), pd));
+                worst[4 + ssi] = std::max(worst[4 + ssi], angle_between(oct.image.texel(i, j), oct_decode_ref(sc, tc)));
+            }
+        }
+    }
+    // The dual atlas from the function, one sample per texel: the float64 layout exactly.
+    DualParaboloidBakeOptions o;
+    o.half_size = n;
+    o.supersample = 1;
+    const DualParaboloidMap dual = bake_dual_paraboloid_fn(identity_env, o);
+    double worst_dual = 0;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < 2 * n; ++i) {
+            worst_dual = std::max(worst_dual, angle_between(dual.levels[0].texel(i, j),
+                                                            atlas_dir_ref((i + 0.5) / (2.0 * n), (j + 0.5) / n,
+                                                                          static_cast<double>(dual.guard_scale))));
+        }
+    }
+    std::printf(
+        "self-direction bakes (%d texels) vs float64 texel-centre directions, max angle (rad):\n"
+        "  cube ss1 %.3g, ss4 %.3g; paraboloid ss1 %.3g, ss4 %.3g; octahedral ss1 %.3g, ss4 %.3g; "
+        "dual atlas ss1 %.3g\n",
+        n, worst[0], worst[1], worst[2], worst[3], worst[4], worst[5], worst_dual);
+    EXPECT_LT(worst[0], 1e-6);
+    EXPECT_LT(worst[2], 1e-6);
+    EXPECT_LT(worst[4], 1e-6);
+    EXPECT_LT(worst_dual, 1e-6);
+    // The largest angle between neighbouring texel centres (float64), the maps' "texel" below:
+    // 2 / n on a cube face (at its centre), 4 / n for the single paraboloid with g = 1 (at its
+    // centre, 4 / ((1 + s^2 + t^2) g n)), 4 / (g H) for the atlas, and for the octahedral map
+    // measured here (largest next to the folds).
+    double t_oct = 0;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i + 1 < n; ++i) {
+            const D3 a = oct_decode_ref(2.0 * (i + 0.5) / n - 1.0, 2.0 * (j + 0.5) / n - 1.0);
+            const D3 b = oct_decode_ref(2.0 * (i + 1.5) / n - 1.0, 2.0 * (j + 0.5) / n - 1.0);
+            const D3 c = oct_decode_ref(2.0 * (j + 0.5) / n - 1.0, 2.0 * (i + 0.5) / n - 1.0);
+            const D3 e = oct_decode_ref(2.0 * (j + 0.5) / n - 1.0, 2.0 * (i + 1.5) / n - 1.0);
+            t_oct = std::max({t_oct, std::acos(std::min(1.0, a.x * b.x + a.y * b.y + a.z * b.z)),
+                              std::acos(std::min(1.0, c.x * e.x + c.y * e.y + c.z * e.z))});
+        }
+    }
+    const double t_cube = 2.0 / n, t_para = 4.0 / n, t_dual = 4.0 / (static_cast<double>(dual.guard_scale) * n);
+    std::printf("  in texels: cube ss4 %.3g, paraboloid ss4 %.3g, octahedral ss4 %.3g (octahedral texel %.3g rad)\n",
+                worst[1] / t_cube, worst[3] / t_para, worst[5] / t_oct, t_oct);
+    EXPECT_LT(worst[1] / t_cube, 0.002);  // the box filter's bias: small fractions of a texel
+    EXPECT_LT(worst[3] / t_para, 0.0001);
+    EXPECT_LT(worst[5] / t_oct, 0.1);  // texels straddling a fold, where the mapping has a kink
+
+    // Lookups of the one-sample-per-texel maps.
+    const EnvCubeMap cube = bake_cube_map(n, identity_env, 1);
+    const EnvImage para = bake_paraboloid_fn(identity_env, n, mat3(1.0f), -1.0f, 1.0f, 1);
+    const OctahedralMap oct = bake_octahedral_fn(n, identity_env, 1);
+    DirGen gen(69);
+    double e_cube = 0, e_para = 0, e_oct = 0, e_dual = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 d = gen();
+        e_cube = std::max(e_cube, angle_between(sample_cube_map(cube, d), to_d(d)));
+        e_oct = std::max(e_oct, angle_between(sample_octahedral(oct, d), to_d(d)));
+        e_dual = std::max(e_dual, angle_between(sample_dual_paraboloid(dual, d), to_d(d)));
+        if (d.z < 0.0f) e_para = std::max(e_para, angle_between(sample_paraboloid(para, d, -1.0f), to_d(d)));
+    }
+    std::printf(
+        "lookups of those maps (%d texels, ss1) vs the direction, max angle: cube %.3g rad (%.3g texels), "
+        "single paraboloid %.3g (%.3g), dual atlas %.3g (%.3g), octahedral %.3g (%.3g)\n",
+        n, e_cube, e_cube / t_cube, e_para, e_para / t_para, e_dual, e_dual / t_dual, e_oct, e_oct / t_oct);
+    // Bilinear interpolation of a smooth map errs to second order (the atlas); first order where
+    // the map has a kink or an edge: the octahedral folds, the cube's corners (the seamless fetch
+    // takes the nearest texel of the next face), the single paraboloid's rim with g = 1 (the rim
+    // touches the image edge: clamp to edge, half a rim texel, 1 / n rad).
+    EXPECT_LT(e_cube / t_cube, 0.15);
+    EXPECT_LT(e_para / t_para, 0.3);
+    EXPECT_LT(e_dual / t_dual, 0.01);
+    EXPECT_LT(e_oct / t_oct, 0.3);
 }
 
 // ---------------------------------------------------------------------------------------------

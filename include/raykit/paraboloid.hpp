@@ -86,6 +86,13 @@ struct OctahedralMap {
 
 /// Bilinear lookup at uv (texel centres at (i + 0.5) / size, GL_LINEAR) with clamp-to-edge: the
 /// CPU mirror of texture(sampler, uv) on one level.
+/// Domain: finite uv with |uv * size| < 2^31 (the texel index is an int); uv outside [0, 1] reads
+/// the edge texels. Edge cases: a texel centre returns that texel exactly.
+/// Max error vs float64 bilinear interpolation at the same uv: 1.2e-7 for values in [0, 1]
+/// (128 x 64 image, uv in [-0.1, 1.1]^2; tests/test_paraboloid.cpp Bake.BilinearAgainstFloat64
+/// asserts 1e-5). uv * size is exact for power-of-two sizes; otherwise its rounding (an ulp of
+/// uv * size) moves the weights by as much.
+/// Cost: 4 texel reads, 2 floor, 3 vec3 mix (9 lerps), ~6 flops.
 inline vec3 sample_image_bilinear(const EnvImage& img, vec2 uv)
 {
     const float x = uv.x * static_cast<float>(img.width) - 0.5f;
@@ -207,7 +214,14 @@ inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
 
 /// Seamless bilinear lookup of a cube map along dir (any non-zero length): the CPU mirror of
 /// texture(samplerCube, dir) with GL_LINEAR and GL_TEXTURE_CUBE_MAP_SEAMLESS (taps past a face
-/// edge come from the adjacent face).
+/// edge come from the adjacent face, at the texel nearest to the continued direction).
+/// Domain: finite dir; the zero vector reads +Z's centre. cube.size >= 1 (an empty cube is not
+/// checked). Max error, as the angle between the lookup of a self-direction cube (64 texels, one
+/// sample per texel) and the direction: 3.6e-3 rad = 0.115 texel (2 / size), at the cube's corners
+/// where the off-face taps are nearest-texel; second order inside a face (tests/test_paraboloid.cpp
+/// Bake.SelfDirectionMapsTexelsAndLookups asserts 0.15 texel).
+/// Cost: face selection (3 abs, 2 div), 4 texel reads (an off-face one adds a face direction, a
+/// face selection and 2 floor), 2 floor, 3 vec3 mix.
 inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
 {
     float sc = 0.0f, tc = 0.0f;
@@ -228,6 +242,11 @@ inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
 /// of supersample x supersample evaluations spread evenly over its area (a box filter in texel
 /// space). `env(vec3 unit_dir) -> vec3`. Throws std::invalid_argument for size < 1 or supersample
 /// outside [1, 64].
+/// Max error, self-direction content (env(d) = d), against the float64 texel-centre direction of
+/// GL's table 8.19: 4.2e-8 rad with supersample 1 (the texel centre itself); 2.5e-5 rad = 0.0008
+/// texel with 4 (the box filter's mean, size 64; tests/test_paraboloid.cpp
+/// Bake.SelfDirectionMapsTexelsAndLookups). Cost: 6 size^2 supersample^2 env calls, each with a
+/// face direction and a normalisation.
 template <class F>
 EnvCubeMap bake_cube_map(int size, F&& env, int supersample = 4)
 {
@@ -284,6 +303,12 @@ inline float dual_paraboloid_guard_scale(const DualParaboloidBakeOptions& o)
 /// then ceil(max_lod) 2x2 box mips. supersample 0 means 4. Throws std::invalid_argument for
 /// half_size < 2 or not a multiple of 2^ceil(max_lod), max_lod outside [0, 16], supersample
 /// outside [0, 64], or a guard that eats the whole map (guard scale < 0.25).
+/// Max error, self-direction content, supersample 1: every texel (guard band included) within
+/// 9.4e-8 rad of the float64 direction of its centre from the atlas layout documented in
+/// paraboloid.glsl (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups; the layout
+/// itself is pinned by hand in DualParaboloid.AtlasLayoutPinnedByHand).
+/// Cost: 2 H^2 supersample^2 (env + rk_dual_paraboloid_dir + a mat3 product), then the mips
+/// (4 reads and adds per texel of each coarser level).
 template <class F>
 DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptions& o)
 {
@@ -340,6 +365,11 @@ inline int dual_paraboloid_auto_supersample(int cube_size, int half_size, float 
 /// guard band filled), each texel the box-filtered mean of supersampled seamless bilinear cube
 /// lookups (options.supersample = 0: dual_paraboloid_auto_supersample), plus ceil(max_lod) mips.
 /// Throws as bake_dual_paraboloid_fn, and for an empty cube.
+/// Max error, self-direction cube of 64 texels into H = 64 (max_lod 2, automatic supersampling):
+/// 1.2e-3 rad = 0.056 of the local texel angle against the float64 direction of every texel
+/// centre from the documented layout, guard band included (tests/test_paraboloid.cpp
+/// Bake.SelfDirectionCubeConvertsToSelfDirectionParaboloid asserts 0.1 texel).
+/// Cost: 2 H^2 supersample^2 sample_cube_map + rk_dual_paraboloid_dir, then the mips.
 inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParaboloidBakeOptions o)
 {
     if (cube.size < 1) throw std::invalid_argument("raykit::bake_dual_paraboloid: empty cube map");
@@ -353,6 +383,14 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// to [0, max_lod]: bilinear within a level, linear between levels (GL_LINEAR_MIPMAP_LINEAR with
 /// textureLod and GL_CLAMP_TO_EDGE), at rk_dual_paraboloid_uv. The CPU mirror of
 /// rk_dual_paraboloid_sample_lod.
+/// Domain: any finite dir (zero counts as +z), any lod (clamped to [0, min(max_lod, levels - 1)]).
+/// Edge cases: an empty map returns (0, 0, 0); on the seam (z = ±0) the +z half is read, and the
+/// guard keeps every tap inside the half (DualParaboloid.GuardKeepsEveryTapInItsHalf).
+/// Max error, as the angle between the lookup of a self-direction atlas (H = 64, LOD 0, one sample
+/// per texel) and the direction: 1.6e-4 rad = 0.0026 texel (4 / (g H)), second order everywhere
+/// (Bake.SelfDirectionMapsTexelsAndLookups); baked from a 96-texel cube, 3.1e-4 rad at LOD 0 and
+/// no larger next to the seam (Bake.SeamIsContinuous).
+/// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD).
 inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)
 {
     if (map.levels.empty()) return vec3(0.0f);
@@ -375,6 +413,11 @@ inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float
 /// evaluations of env(world_dir) over its area. Look up with rk_paraboloid_sample_biased or
 /// sample_paraboloid. Throws std::invalid_argument for size < 1, supersample outside [1, 64] or
 /// guard_scale outside [RK_PARABOLOID_GUARD_MIN, 1].
+/// Max error, self-direction content (identity frame, hemi -1, g = 1, 64 texels), against the
+/// float64 direction of each texel centre (st = (2 uv - 1) / g, decoded): 4.3e-8 rad with
+/// supersample 1, 1.5e-7 rad with 4 (tests/test_paraboloid.cpp
+/// Bake.SelfDirectionMapsTexelsAndLookups). Cost: size^2 supersample^2 (rk_paraboloid_decode + a
+/// mat3 product + env).
 template <class F>
 EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float guard_scale = 1.0f, int supersample = 4)
 {
@@ -403,7 +446,12 @@ EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float gua
 }
 
 /// bake_paraboloid_fn from a cube map (seamless bilinear lookups; supersample 0 chooses about two
-/// samples per cube texel where the map's texels are largest, as for the atlas).
+/// samples per cube texel where the map's texels are largest, as for the atlas). Throws as
+/// bake_paraboloid_fn, and for an empty cube.
+/// Max error: a window-frame map (64 texels) from a self-direction cube of 48 texels looks up
+/// within 1.3e-3 rad of the direction over the half-space the window reflects
+/// (tests/test_paraboloid.cpp Bake.WindowFrameMapsAndSingleParaboloid asserts 0.01 rad).
+/// Cost: size^2 supersample^2 sample_cube_map.
 inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, float hemi, float guard_scale = 1.0f,
                                 int supersample = 0)
 {
@@ -420,6 +468,16 @@ inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, fl
 /// Bilinear lookup of a single paraboloid map along the local direction dir (world * frame),
 /// directions behind the map clamped to the rim: the CPU mirror of rk_paraboloid_sample_biased
 /// at bias 0 on the base level.
+/// Domain: any finite dir (zero counts as d0). Edge cases: directions behind the map (|st| > 1)
+/// read the rim point with the same st direction; the exact antipode of d0 has st = (0, 0) and
+/// reads the centre.
+/// Max error, as the angle between the lookup of a self-direction map (g = 1, 64 texels, one
+/// sample per texel) and the direction, over the hemisphere: 1.5e-2 rad = 0.24 of the centre
+/// texel (4 / size), on the rim, where g = 1 puts the rim on the image edge and clamp-to-edge
+/// returns the last texel centre (half a rim texel, 1 / size rad): bake with g < 1 for a guard
+/// ring. Elsewhere second order (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups).
+/// Cost: rk_paraboloid_encode, 1 dot (+ 1 sqrt, 1 div behind the map), rk_paraboloid_uv, 1
+/// bilinear lookup.
 inline vec3 sample_paraboloid(const EnvImage& map, vec3 dir, float hemi, float guard_scale = 1.0f)
 {
     vec2 st = rk_paraboloid_encode(dir, hemi);
@@ -442,6 +500,12 @@ inline EnvCubeMap cube_from_dual_paraboloid(const DualParaboloidMap& map, int si
 
 /// Octahedral encoding of a direction (any non-zero length; zero gives the +z pole) to p in
 /// [-1, 1]^2: p = (x, y) / (|x| + |y| + |z|), folded over the diagonals for z < 0.
+/// Domain: any finite dir (normalised first, robustly; all-denormal counts as zero). Edge cases:
+/// z = -0 is not folded; x = 0 or y = 0 below the equator folds to the + side (Cigolle's
+/// signNotZero); -z maps to the corner (1, 1), the same direction as the other three corners.
+/// Max error vs float64 (Cigolle et al. 2014's listing): 1.3e-7 in p; dir -> p -> dir through
+/// octahedral_decode within 3.1e-7 rad (tests/test_paraboloid.cpp Octahedral.EncodeDecodeAgainstFloat64
+/// asserts 3e-7 and 5e-7). Cost: rk_paraboloid_normalize (1 div, 1 rsqrt) + 2 div + ~8 flops.
 inline vec2 octahedral_encode(vec3 dir)
 {
     const vec3 d = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, 1.0f));
@@ -455,6 +519,10 @@ inline vec2 octahedral_encode(vec3 dir)
 }
 
 /// The unit direction of octahedral coordinates p in [-1, 1]^2 (clamped).
+/// Domain: finite p; outside [-1, 1]^2 clamped. Edge cases: the four corners all give -z, (0, 0)
+/// gives +z. Max error vs float64: 4.2e-8 rad (random p; tests/test_paraboloid.cpp
+/// Octahedral.EncodeDecodeAgainstFloat64 asserts 3e-7). Cost: ~8 flops + 1 normalisation
+/// (1 sqrt, 1 div).
 inline vec3 octahedral_decode(vec2 p_in)
 {
     const vec2 p = glm::clamp(p_in, vec2(-1.0f), vec2(1.0f));
@@ -469,6 +537,11 @@ inline vec3 octahedral_decode(vec2 p_in)
 /// Bakes an octahedral map of size x size texels (uv = 0.5 p + 0.5) from a function of direction,
 /// supersample^2 evaluations per texel. Throws std::invalid_argument for size < 2 or supersample
 /// outside [1, 64].
+/// Max error, self-direction content, 64 texels, against the float64 decode of each texel centre:
+/// 4.2e-8 rad with supersample 1; with 4, 4.9e-3 rad = 0.064 of the largest texel angle (0.0765
+/// rad) for texels that straddle a fold, where the mapping has a kink and the box filter's mean
+/// leaves the centre direction (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups).
+/// Cost: size^2 supersample^2 (octahedral_decode + env).
 template <class F>
 OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4)
 {
@@ -496,7 +569,11 @@ OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4)
 }
 
 /// An octahedral map resampled from a cube map (supersample 0: ceil(5 cube_size / size) clamped to
-/// [2, 16], about two samples per cube texel where the octahedral texels are largest).
+/// [2, 16], about two samples per cube texel where the octahedral texels are largest). Throws as
+/// bake_octahedral_fn, and for an empty cube. Accuracy against the source cube at the cube's
+/// texel budget: tests/test_paraboloid.cpp Accuracy.EqualTexelBudgetsDualParaboloidVsOctahedral
+/// (56.2 dB PSNR from a 64-texel cube of a synthetic city, vs 51.8 dB for the dual paraboloid).
+/// Cost: size^2 supersample^2 (octahedral_decode + sample_cube_map).
 inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int supersample = 0)
 {
     if (cube.size < 1) throw std::invalid_argument("raykit::bake_octahedral: empty cube map");
@@ -511,6 +588,13 @@ inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int super
 
 /// Bilinear lookup of an octahedral map along dir with the map's fold-over edges (a tap past an
 /// edge reads the texel mirrored across the edge's midpoint, as a one-texel gutter would provide).
+/// Domain: any finite dir (zero counts as +z); map.size >= 2.
+/// Max error, as the angle between the lookup of a self-direction map (64 texels, one sample per
+/// texel) and the direction: 1.9e-2 rad = 0.25 of the largest texel angle (0.0765 rad), next to
+/// the folds (p.x = 0, p.y = 0 and the inner diamond's edges), where bilinear interpolation across
+/// the mapping's kink errs to first order (tests/test_paraboloid.cpp
+/// Bake.SelfDirectionMapsTexelsAndLookups asserts 0.3). Cost: octahedral_encode, 4 texel reads
+/// (with the edge mirroring), 2 floor, 3 vec3 mix.
 inline vec3 sample_octahedral(const OctahedralMap& map, vec3 dir)
 {
     const int n = map.size;

@@ -85,7 +85,15 @@ RK_INLINE float rk_envmap_sigmoid(float x, float a, float k)
 
 /// rk_envmap_fahlen_weight: σ(angle(N, R)) = rk_envmap_sigmoid(rk_envmap_angle(cos_nr), a, k),
 /// the thesis's replacement for N·R in the plane correction. cos_nr = dot(N, R) for unit vectors.
-/// Cost: 1 sqrt, 1 atan, 1 exp, 1 div.
+/// Domain: cos_nr clamped to [-1, 1]; a, k as rk_envmap_sigmoid. With the thesis's a, k:
+/// cos_nr = 1 gives σ(0) = 0.98566, 0 (grazing) σ(π/2) = 0.04098, -1 σ(π) = 2.66e-5: positive and
+/// decreasing over the whole range, never 0.
+/// Max error vs float64 σ(acos(cos_nr)) at the float cos_nr: 1.6e-7 absolute on the CPU (thesis
+/// a, k; tests/test_envmap_correction.cpp SigmoidPublishedValues asserts 1e-6); on llvmpipe the
+/// driver's atan adds up to 2.8e-6 (a in [-8, 8]; GPU parity). Near cos_nr = 1 acos is
+/// ill-conditioned: a rounding δ of cos_nr (6e-8 for a float dot of unit vectors) moves the angle by
+/// up to sqrt(2 δ) = 3.5e-4 rad, the weight by up to 2.3e-5 (|σ'(0)| = 0.066).
+/// Cost: 1 sqrt, 1 atan, 1 exp, 1 div, ~6 flops, 5 clamps.
 RK_INLINE float rk_envmap_fahlen_weight(float cos_nr, float a, float k)
 {
     return rk_envmap_sigmoid(rk_envmap_angle(cos_nr), a, k);
@@ -106,8 +114,14 @@ RK_INLINE vec3 rk_reflect_correct_sphere(vec3 r_dir, vec3 cp, float radius)
 /// radius replaced by the hypotenuse d / (N·R) to a plane parallel to the window at distance d:
 /// R' = R + CP (N·R) / d. Equal in direction to the exact ray-plane correction
 /// (rk_reflect_correct_plane) when P lies in the plane through C parallel to the window (CP·N = 0).
-/// Artefacts at grazing angles (thesis); see rk_reflect_correct_fahlen. R, N unit; N·R clamped
-/// to [0, 1], d to [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX. Cost: 1 dot, 1 div, 3 fma.
+/// Artefacts at grazing angles (thesis); see rk_reflect_correct_fahlen.
+/// Domain: R, N unit (dot(N, R) is used as the cosine as it is); N·R clamped to [0, 1], d to
+/// [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX: finite for every finite input. Edge cases: R
+/// parallel to or behind the window (N·R <= 0) and CP = 0 return R exactly.
+/// Max error vs float64 R + CP max(N·R, 0) / d: 3.1e-7 of |R| + |CP| N·R / d (random unit R, N,
+/// |CP| <= 50; relative to the terms because R' itself cancels to 0 where CP N·R / d = -R;
+/// tests/test_envmap_correction.cpp FahlenIsThePlaneModelWithSigmaForCos asserts 1e-6).
+/// Cost: 1 dot, 1 div, 3 mul, 3 add, 5 clamps.
 RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d)
 {
     vec3 r = rk_envmap_clamp_pos(r_dir);
@@ -119,8 +133,21 @@ RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d
 /// by the sigmoid of the angle between N and R: R' = R + CP σ(angle(N, R)) / d, with parameters a,
 /// k (thesis: RK_ENVMAP_FAHLEN_A = -4.7, RK_ENVMAP_FAHLEN_K = 0.9, d = RK_ENVMAP_FAHLEN_D = 8 m).
 /// An empirical fix of the grazing artefacts of rk_reflect_correct_plane_cos (and of a "tilted
-/// ground" when C is far above the camera); not exact for any geometry. R, N unit; d clamped to
-/// [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX. Cost: 1 dot + rk_envmap_fahlen_weight + 1 div.
+/// ground" when C is far above the camera); not exact for any geometry.
+/// Relation to rk_reflect_correct_plane_cos (same d): the same offset along CP, scaled by
+/// σ(x) / cos x (thesis a, k: 0.9857 at x = 0, below 1 up to 87.04° = 1.519 rad, above beyond).
+/// Unlike it, the weight does not vanish at grazing (σ(π/2) = 0.04098) and keeps decreasing
+/// behind the window (N·R < 0, down to σ(π) = 2.66e-5), where plane_cos returns R.
+/// Domain: R, N unit (dot(N, R) is clamped to [-1, 1] and used as the cosine); d clamped to
+/// [1e-18, 1e18], a and k as rk_envmap_sigmoid, vectors to ±RK_ENVMAP_POS_MAX: finite for every
+/// finite input. CP = 0 returns R.
+/// Max error vs float64 R + CP σ(acos(N·R)) / d, relative to |R| + |CP| σ / d (R' itself can
+/// cancel to 0), random unit R, N and |CP| <= 50 m: 3.5e-7 with the thesis's constants, 6.6e-7
+/// with d in [2, 40], a in [-8, -1], k in [0.3, 1.5]. Near normal incidence (angle < 0.05 rad) the
+/// rounding of the float N·R dominates (see rk_envmap_fahlen_weight): 2.2e-5 (thesis constants),
+/// 1.1e-4 (a down to -8), and 1.3e-7 against float64 at the float N·R
+/// (tests/test_envmap_correction.cpp FahlenMatchesFloat64ThesisFormula prints the worst inputs).
+/// Cost: 1 dot, 1 sqrt, 1 atan, 1 exp, 2 div, ~17 flops, 9 clamps.
 RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp, float d, float a, float k)
 {
     vec3 r = rk_envmap_clamp_pos(r_dir);
@@ -128,7 +155,10 @@ RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp, float d, f
     return r + rk_envmap_clamp_pos(cp) * (w / clamp(d, 1.0e-18f, 1.0e18f));
 }
 
-/// rk_reflect_correct_fahlen (thesis constants): a = -4.7, k = 0.9, d = 8.
+/// rk_reflect_correct_fahlen (thesis constants): a = -4.7, k = 0.9, d = 8 m; bit-identical to the
+/// 6-argument form with those values. Example: N = +z, R = (0.6, 0, 0.8), CP = (8, -16, 4) give
+/// σ(acos 0.8) = 0.76951 and R' = (1.36951, -1.53902, 1.18475). Domain, edge cases, max error
+/// (3.5e-7 of |R| + |CP| σ / d; 2.2e-5 within 0.05 rad of normal incidence) and cost as above.
 RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp)
 {
     return rk_reflect_correct_fahlen(r_dir, n, cp, RK_ENVMAP_FAHLEN_D, RK_ENVMAP_FAHLEN_A, RK_ENVMAP_FAHLEN_K);
