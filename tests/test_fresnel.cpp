@@ -152,7 +152,7 @@ TEST(Fresnel, ConductorMatchesFloat64)
             }
         }
         std::printf("rk_fresnel_conductor %-9s vs float64 complex Fresnel: %s\n", m.name, s.str().c_str());
-        EXPECT_LT(s.max_abs, 9e-7) << m.name << ": " << s.str();  // measured 8.6e-7 (gold), 8.3e-7, 7.4e-7, 2.8e-7
+        EXPECT_LT(s.max_abs, 3e-7) << m.name << ": " << s.str();  // measured 2.2e-7 (gold), 2.1e-7, 2.2e-7, 2.0e-7
         // Normal incidence, Born & Wolf: ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), and 1 at grazing.
         const vec3 f0 = rk_fresnel_conductor(1.0f, m.n, m.k), f90 = rk_fresnel_conductor(0.0f, m.n, m.k);
         for (int ch = 0; ch < 3; ++ch) {
@@ -199,10 +199,10 @@ TEST(Fresnel, ConductorMatchesFloat64)
     std::printf("rk_fresnel_conductor grid vs float64 at the rounded cos: %s\n", plain.str().c_str());
     std::printf("float64 forms sqrt(1 - sin^2/eta^2) vs sqrt(eta^2 - sin^2): max difference %.2e\n", worst_forms);
     EXPECT_LT(worst_forms, 1e-12);
-    // Measured 3.33e-6 at n 0.1, k 0.1, cos 0.531: with n, k << 1, eta^2 - k^2 - sin^2 ~ -sin^2 and
-    // a^2 = (|z| + Re z) / 2 cancels (float rounding of a^2 + b^2 amplified ~2500x); the four metals
-    // above stay below 8.7e-7.
-    EXPECT_LT(grid.max_abs, 3.5e-6) << grid.str();
+    // With n, k << 1, Re z = eta^2 - k^2 - sin^2 ~ -sin^2 < 0: the naive a^2 = (|z| + Re z) / 2
+    // cancels (3.3e-6 at n = k = 0.1, cos 0.531); the library's cancellation-free form stays at
+    // float rounding.
+    EXPECT_LT(grid.max_abs, 4e-7) << grid.str();  // measured 2.7e-7 (3.3e-6 before a^2 avoided (|z| + Re z) / 2)
     EXPECT_LT(grid.mean_abs(), 5e-8) << grid.str();
 }
 

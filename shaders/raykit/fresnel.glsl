@@ -193,13 +193,13 @@ RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, float eta)
 /// Standard closed form with a^2 + b^2 = |eta^2 - k^2 - sin^2 + 2 i eta k|. With k = 0 it equals
 /// rk_fresnel_dielectric for eta >= 1. Domain: cos_i clamped to [0, 1]; eta, k clamped to
 /// [0, 4096]. Max error vs the float64 complex-amplitude form (tests/reference/fresnel_ref.hpp;
-/// test_fresnel ConductorMatchesFloat64): 8.6e-7 absolute for gold (worst near cos = 0.22), 8.3e-7
-/// silver, 7.4e-7 copper, 2.8e-7 aluminium (their RGB n, k); over the grid n in [0.1, 3],
-/// k in [0, 5], cos in [0, 1]: 3.3e-6 (mean 4e-8), worst at n = k = 0.1, cos 0.53, where
-/// a^2 = (|z| + Re z) / 2 cancels (z = eta^2 - k^2 - sin^2 + 2 i eta k with Re z < 0, |Im z| small);
+/// test_fresnel ConductorMatchesFloat64): 2.2e-7 absolute for gold, 2.1e-7 silver, 2.2e-7 copper,
+/// 2.0e-7 aluminium (their RGB n, k); over the grid n in [0.1, 3], k in [0, 5], cos in [0, 1]:
+/// 2.7e-7 (mean 3.4e-8). a = Re sqrt(z), z = eta^2 - k^2 - sin^2 + 2 i eta k, is computed without
+/// the cancellation of (|z| + Re z) / 2 when Re z < 0 (that form was 3.3e-6 off at n = k = 0.1);
 /// for k = 0, n < 1 the error is measured against cos +- 1 ulp (R is infinitely steep at the
 /// critical angle, as for rk_fresnel_dielectric_sp); 2e-6 asserted vs rk_fresnel_dielectric over
-/// n in [1.2, 2.4], k = 0. Cost: 3 sqrt, 2 div, ~30 flops per channel; on the CPU ~13x Schlick
+/// n in [1.2, 2.4], k = 0. Cost: 3 sqrt, 3 div, ~32 flops per channel; on the CPU ~13x Schlick
 /// (bench), so use rk_fresnel_dielectric when k = 0.
 RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
 {
@@ -214,7 +214,11 @@ RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
     // matched indices near grazing, where 1 - cos^2 rounds to 1.
     vec3 t0 = (n - vec3(1.0f)) * (n + vec3(1.0f)) - k2 + vec3(c2);
     vec3 a2b2 = sqrt(t0 * t0 + 4.0f * n2 * k2);
-    vec3 a = sqrt(max(0.5f * (a2b2 + t0), vec3(0.0f)));
+    // a = Re sqrt(z), z = t0 + 2 i eta k: a^2 = (|z| + t0) / 2, which cancels when t0 < 0; there
+    // the same value is (Im z)^2 / (2 (|z| - t0)) = 2 eta^2 k^2 / (|z| - t0), cancellation-free.
+    vec3 a2_pos = 0.5f * (a2b2 + t0);
+    vec3 a2_neg = (2.0f * n2 * k2) / max(a2b2 - t0, vec3(RK_FLT_MIN));
+    vec3 a = sqrt(max(mix(a2_pos, a2_neg, lessThan(t0, vec3(0.0f))), vec3(0.0f)));
     vec3 t1 = a2b2 + vec3(c2);
     vec3 t2 = (2.0f * c) * a;
     vec3 rs = (t1 - t2) / max(t1 + t2, vec3(RK_FLT_MIN));
