@@ -867,9 +867,7 @@ int run(const Options& opt)
 {
     rkgl::HeadlessContext ctx;
     if (!ctx.create()) {
-        const char* ci = std::getenv("CI");
-        std::fprintf(stderr, "bench_interior_gl: no OpenGL 4.5 context: %s\n", ctx.error().c_str());
-        return (ci && std::string(ci) == "true") ? 1 : 77;
+        return rkgl::no_context_exit("bench_interior_gl", ctx.error());
     }
     const std::string renderer = ctx.renderer();
     std::printf("renderer: %s\n", renderer.c_str());

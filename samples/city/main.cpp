@@ -694,10 +694,7 @@ int run_headless(const Options& opt)
     const auto t_start = std::chrono::steady_clock::now();
     rkgl::HeadlessContext ctx;
     if (!ctx.create()) {
-        const char* ci = std::getenv("CI");
-        const bool in_ci = ci && std::string(ci) == "true";
-        std::fprintf(stderr, "city: no OpenGL 4.5 context: %s\n", ctx.error().c_str());
-        return in_ci ? 1 : 77;
+        return rkgl::no_context_exit("city", ctx.error());
     }
     std::printf("renderer: %s\n", ctx.renderer().c_str());
     const Settings s = settings_for(opt);

@@ -15,6 +15,7 @@
 #endif
 #include <GL/glcorearb.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -131,6 +132,25 @@ private:
     std::string error_;
     std::string platform_;
 };
+
+/// True when running under CI: the CI environment variable is set to anything but "", "0" or
+/// "false" (CI services set CI=true; some set CI=1).
+inline bool in_ci()
+{
+    const char* ci = std::getenv("CI");
+    if (!ci) return false;
+    const std::string v(ci);
+    return !(v.empty() || v == "0" || v == "false" || v == "False" || v == "FALSE");
+}
+
+/// The exit code of a program that found no OpenGL 4.5 context: 77 (ctest's "skipped") normally,
+/// 1 (failed) under CI, where a missing device must never pass as a skip. Prints why.
+inline int no_context_exit(const char* program, const std::string& error)
+{
+    const bool ci = in_ci();
+    std::fprintf(stderr, "%s: %s: no headless OpenGL 4.5 context: %s\n", program, ci ? "FAIL (under CI)" : "SKIP", error.c_str());
+    return ci ? 1 : 77;
+}
 
 /// Compiles and links a program from (stage, source) pairs; throws std::runtime_error with the
 /// driver's log (and the failing source's numbered lines nearby) on failure.

@@ -190,10 +190,7 @@ int run(const char* out_path)
 {
     rkgl::HeadlessContext ctx;
     if (!ctx.create()) {
-        const char* ci = std::getenv("CI");
-        const bool in_ci = ci && std::string(ci) == "true";
-        std::fprintf(stderr, "fresnel_curves: no OpenGL 4.5 context: %s\n", ctx.error().c_str());
-        return in_ci ? 1 : 77;
+        return rkgl::no_context_exit("fresnel_curves", ctx.error());
     }
     std::printf("renderer: %s\n", ctx.renderer().c_str());
     const GLubyte* gl_renderer = glGetString(GL_RENDERER);
