@@ -454,6 +454,43 @@ def paragraph(text):
     return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
+def interior_summary(out_dir):
+    """The interior-mapping frame-time summary, quoted from benchmarks_interior.md (written by
+    scripts/bench_interior.sh), so that this page shows the ratios without a second source."""
+    md = ["## Interior mapping: frame time against a plain material", ""]
+    md.append("Interior mapping is measured as whole frames on the GL driver, not per call "
+              "([benchmarks_interior.md](benchmarks_interior.md), `bash scripts/bench_interior.sh`: "
+              "the scene, the method, per-feature costs, the depth pre-pass, 10^3 to 4*10^6 rooms and "
+              "SPIR-V counts).")
+    md.append("")
+    path = os.path.join(out_dir, "benchmarks_interior.md")
+    if not os.path.exists(path):
+        md.append("(Not measured yet: run `bash scripts/bench_interior.sh`.)")
+        md.append("")
+        return md
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    renderer = next((l for l in lines if l.startswith("**Renderer")), None)
+    if renderer:
+        md.append(renderer)
+        md.append("")
+    start = next((i for i, l in enumerate(lines) if l.startswith("Summary (")), None)
+    if start is None:
+        md.append("(benchmarks_interior.md has no summary section.)")
+        md.append("")
+        return md
+    md.append(lines[start])
+    md.append("")
+    i = start + 1
+    while i < len(lines) and not lines[i].strip():
+        i += 1
+    while i < len(lines) and lines[i].strip():
+        md.append(lines[i])
+        i += 1
+    md.append("")
+    return md
+
+
 def write_markdown(context, rows, suites, out_dir, pngs):
     pngs_written = [os.path.basename(p) for p in pngs.values() if p]
     sources = [s.source for s in suites if s.source]
@@ -473,9 +510,7 @@ def write_markdown(context, rows, suites, out_dir, pngs):
         md.append("Sections: " + ", ".join("[%s](#%s)" % (s.title.partition(":")[0].strip(), anchor(s.title))
                                            for s in suites) + ".")
         md.append("")
-    md.append("Interior mapping is measured as whole frames on the GPU driver, not per call: see "
-              "[benchmarks_interior.md](benchmarks_interior.md) (`bash scripts/bench_interior.sh`).")
-    md.append("")
+    md.extend(interior_summary(out_dir))
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))
