@@ -118,14 +118,14 @@ inline InteriorAtlasLayout interior_atlas_layout(int tile, int grid, int max_lod
 }
 
 /// interior_atlas_mip_safe: whether mip level `lod` of `layout`, sampled bilinearly anywhere inside a
-/// tile proper, reads only texels of that tile's cell (the padding rule, checked texel by texel: the
-/// two bilinear taps around every tile-interior sample position at that level, including the box
-/// filter that built the level from cell-aligned blocks of 2^lod base texels). Exact when the cell
+/// tile proper, reads only texels of that tile's cell (the padding rule: the two bilinear taps
+/// around any tile-interior sample position at that level, each a cell-aligned block of 2^lod base
+/// texels that the box filter built the level from, stay inside the cell). Exact when the cell
 /// is a multiple of 2^lod (always so for interior_atlas_layout); otherwise false, which is
 /// conservative: a wide enough gutter can keep the mixed texels out of reach (tests/
 /// test_interior_features.cpp emulates the mip chain and GL_LINEAR and finds it never falsely
-/// safe). Cost O(grid^2 cell^2 / 4^lod) texel checks: a set-up-time check, not for a
-/// frame loop.
+/// safe). Cost O(1): the taps move monotonically with the sample position, so the two extreme
+/// positions of the tile proper decide.
 inline bool interior_atlas_mip_safe(const InteriorAtlasLayout& layout, int lod)
 {
     const long s = 1L << lod;
