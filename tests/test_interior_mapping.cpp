@@ -76,19 +76,13 @@ void check_ray(const Ray& r, bool varying, glm::vec3 jitter, u32 seed, Tally& tl
     n[r.axis] = static_cast<float>(r.sign);
     const rk_im_hit h = varying ? rk_im_trace_varying(r.p, r.cam, n, r.g, jitter, seed) : rk_im_trace(r.p, r.cam, n, r.g);
     if (!finite_hit(h)) ++tl.non_finite;
-    double p[3], cam[3], lo[3], hi[3];
+    const ref_im::Hit ref = reference_hit(r, varying, jitter, seed);
+    const ref_im::Grid rg = ref_grid(r.g);
+    double p[3], cam[3];
     for (int a = 0; a < 3; ++a) {
         p[a] = dd(r.p[a]);
         cam[a] = dd(r.cam[a]);
-        lo[a] = dd(r.lo[a]);
-        hi[a] = dd(r.hi[a]);
     }
-    const ref_im::Grid rg = ref_grid(r.g);
-    ref_im::WallOffset off;
-    if (varying) {
-        off = [&](int axis, long k) { return dd(rk_im_wall_offset(axis, static_cast<int>(k), jitter[axis], seed)); };
-    }
-    const ref_im::Hit ref = ref_im::trace(p, cam, r.axis, r.sign, lo, hi, rg, off, 0.0009765625);
     if (ref.valid != h.valid) {
         ++tl.wrong_valid;
         if (tl.worst_wrong.empty()) tl.worst_wrong = "valid: " + describe(r);

@@ -43,20 +43,6 @@ int major_face(glm::dvec3 v, double* second)
     return 2 * m + (v[m] < 0 ? 1 : 0);
 }
 
-/// The float64 reference hit of the library's ray, with the library's wall model.
-ref_im::Hit reference_hit(const Ray& r, glm::vec3 jitter, u32 seed)
-{
-    double p[3], cam[3], lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-        p[a] = dd(r.p[a]);
-        cam[a] = dd(r.cam[a]);
-        lo[a] = dd(r.lo[a]);
-        hi[a] = dd(r.hi[a]);
-    }
-    ref_im::WallOffset off = [&](int axis, long k) { return dd(rk_im_wall_offset(axis, static_cast<int>(k), jitter[axis], seed)); };
-    return ref_im::trace(p, cam, r.axis, r.sign, lo, hi, ref_grid(r.g), off, 0.0009765625);
-}
-
 }  // namespace
 
 TEST(InteriorSurface, CubeLookupIsTheHitFaceForRegularAndDisplacedWalls)
@@ -84,7 +70,7 @@ TEST(InteriorSurface, CubeLookupIsTheHitFaceForRegularAndDisplacedWalls)
             glm::vec3 nrm(0.0f);
             nrm[r.axis] = static_cast<float>(r.sign);
             const rk_im_hit h = rk_im_trace_varying_grad(r.p, r.cam, nrm, glm::vec3(0.01f, 0, 0), glm::vec3(0, 0.01f, 0), r.g, jitter, seed);
-            const ref_im::Hit ref = reference_hit(r, jitter, seed);
+            const ref_im::Hit ref = reference_hit(r, true, jitter, seed);
             if (!ref.valid || !h.valid) continue;
             ++n;
             // Only hits where library and reference agree on the face and room (ties and
@@ -205,7 +191,7 @@ TEST(InteriorSurface, ArrayLayerIsSurfaceKindTimesVariantsPlusVariant)
         glm::vec3 nrm(0.0f);
         nrm[r.axis] = static_cast<float>(r.sign);
         const rk_im_hit h = rk_im_trace_varying(r.p, r.cam, nrm, r.g, glm::vec3(0.25f), seed);
-        const ref_im::Hit ref = reference_hit(r, glm::vec3(0.25f), seed);
+        const ref_im::Hit ref = reference_hit(r, true, glm::vec3(0.25f), seed);
         if (!ref.valid || !h.valid || ref.family != h.family || ref.side != h.side) continue;
         const int kind = ref.family == 1 ? (ref.side > 0 ? 0 : 1) : 2;
         const float layer = rk_im_array_layer(h, V, seed);

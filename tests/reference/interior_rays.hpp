@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "raykit/interior_mapping.hpp"
@@ -138,6 +139,24 @@ inline Ray make_ray(std::mt19937& rng, Kind kind)
         r.cam[t1] = dn[static_cast<size_t>(std::floor(U(rng) * 8.0f)) % 8];
     }
     return r;
+}
+
+/// The float64 brute-force hit of a test ray (reference/interior_ref.hpp) with the library's wall
+/// model: the regular grid, or walls displaced by rk_im_wall_offset(axis, k, jitter, seed).
+inline ref_im::Hit reference_hit(const Ray& r, bool varying, glm::vec3 jitter, std::uint32_t seed)
+{
+    double p[3], cam[3], lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        p[a] = dd(r.p[a]);
+        cam[a] = dd(r.cam[a]);
+        lo[a] = dd(r.lo[a]);
+        hi[a] = dd(r.hi[a]);
+    }
+    ref_im::WallOffset off;
+    if (varying) {
+        off = [&](int axis, long k) { return dd(raykit::rk_im_wall_offset(axis, static_cast<int>(k), jitter[axis], seed)); };
+    }
+    return ref_im::trace(p, cam, r.axis, r.sign, lo, hi, ref_grid(r.g), off, 0.0009765625);
 }
 
 }  // namespace imtest
