@@ -368,7 +368,12 @@ inline int dual_paraboloid_auto_supersample(int cube_size, int half_size, float 
 /// Max error, self-direction cube of 64 texels into H = 64 (max_lod 2, automatic supersampling):
 /// 1.2e-3 rad = 0.056 of the local texel angle against the float64 direction of every texel
 /// centre from the documented layout, guard band included (tests/test_paraboloid.cpp
-/// Bake.SelfDirectionCubeConvertsToSelfDirectionParaboloid asserts 0.1 texel).
+/// Bake.SelfDirectionCubeConvertsToSelfDirectionParaboloid asserts 0.1 texel). Filtering: from a
+/// 128-texel cube of checkers with cells of 0.7 to 2.2 atlas texels (H = 32), every texel within
+/// 0.054 (RMS 0.012, contrast 1) of the float64 solid-angle-weighted mean of the content over its
+/// footprint (the box filter is uniform in st, not in solid angle: 0.016 of that on the rim; most
+/// of the rest is the cube's own resolution); one sample per texel errs by 0.60 (RMS 0.22), 2 x 2
+/// by 0.31 (RMS 0.06) (Bake.CubeToDualParaboloidTexelsAreSolidAngleMeans asserts 0.1, RMS 0.02).
 /// Cost: 2 H^2 supersample^2 sample_cube_map + rk_dual_paraboloid_dir, then the mips.
 inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParaboloidBakeOptions o)
 {
@@ -388,8 +393,13 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// guard keeps every tap inside the half (DualParaboloid.GuardKeepsEveryTapInItsHalf).
 /// Max error, as the angle between the lookup of a self-direction atlas (H = 64, LOD 0, one sample
 /// per texel) and the direction: 1.6e-4 rad = 0.0026 texel (4 / (g H)), second order everywhere
-/// (Bake.SelfDirectionMapsTexelsAndLookups); baked from a 96-texel cube, 3.1e-4 rad at LOD 0 and
-/// no larger next to the seam (Bake.SeamIsContinuous).
+/// (Bake.SelfDirectionMapsTexelsAndLookups); baked from a 96-texel cube (max_lod 2), within a
+/// texel of the seam (|st| > 1 - h, h = 2^lod 2 / (g H) the LOD's texel in st) 1.6e-4, 6.0e-4 and
+/// 2.4e-3 rad at LOD 0, 1, 2, below the band one texel further in (1.7e-4, 6.4e-4, 2.8e-3; the
+/// guard band's content is right). Not continuous across the seam: the halves are mirror images,
+/// so their bilinear errors across z = 0 have opposite signs and the lookup jumps by up to
+/// h^2 / 4 rad (2.7e-4, 1.1e-3, 4.4e-3: twice either side's error, 1.6 times the band's; only a
+/// cross-fade of the halves near z = 0 would remove it) (Bake.SeamIsContinuous).
 /// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD).
 inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)
 {

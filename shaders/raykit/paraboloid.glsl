@@ -19,7 +19,10 @@
 //          The hemisphere (hemi z >= 0) maps onto the unit disk (the "sweet circle"), its pole to
 //          (0, 0), the rim hemi z = 0 to |st| = 1. Directions of the other hemisphere continue the
 //          same stereographic projection outside the disk (|st| > 1, the antipode at infinity); the
-//          atlas's guard band stores exactly that continuation, which makes the seam invisible.
+//          atlas's guard band stores exactly that continuation, so no tap near the seam reads a
+//          wrong texel (the error next to the seam is below that a texel further in; what remains is
+//          a jump of about h^2/4 rad between the two halves' bilinear errors, h the LOD's texel in
+//          st: raykit::sample_dual_paraboloid's comment gives the measured numbers).
 //          Handedness, seen from the map centre looking along d0 with +y up: the +z map (hemi = +1)
 //          is mirrored left-right (s grows with x, which points left), the -z map is not.
 //   uv     texture coordinates, 0.5 + 0.5 st for a single map (v = 0 is the first row of the

@@ -50,7 +50,11 @@ RK_INLINE vec4 rk_dual_paraboloid_sample_grad(sampler2D atlas, vec3 dir, float g
 /// per-pixel LOD bias: texture(map, uv, bias). A single map has no seam, so the implicit
 /// derivatives are fine; directions behind the window are clamped to the rim (|st| <= 1).
 /// guard_scale as used when baking the map (1 for the thesis's layout, where the rim touches the
-/// edge: sample it with GL_CLAMP_TO_EDGE). Cost: rk_paraboloid_encode + 1 texture.
+/// edge: sample it with GL_CLAMP_TO_EDGE). llvmpipe within 2.4e-6 (values in [0, 1]) of the CPU
+/// sampling of the same map at the same LOD (raykit::sample_paraboloid at LOD 0, trilinear at
+/// LOD = bias where uv steps one texel per pixel), biases -1..9, directions behind the window
+/// included (tests/gpu/parity_paraboloid.cpp ParaboloidSampleBiased asserts 1e-5).
+/// Cost: rk_paraboloid_encode + 1 texture.
 RK_INLINE vec4 rk_paraboloid_sample_biased(sampler2D map, vec3 dir, float hemi, float guard_scale, float lod_bias)
 {
     vec2 st = rk_paraboloid_encode(dir, hemi);

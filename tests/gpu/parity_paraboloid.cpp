@@ -500,3 +500,177 @@ TEST(GpuParity, DualParaboloidSampling)
     glDeleteBuffers(1, &ssbo);
     glDeleteTextures(1, &atlas);
 }
+
+// rk_paraboloid_sample_biased (the thesis's single square map with a per-pixel LOD bias,
+// texture(map, uv, bias) with implicit derivatives) in a fragment shader, against the CPU sampling
+// of the same map at the same LOD: sample_paraboloid (the documented CPU mirror) at LOD 0, and
+// bilinear per level mixed linearly between levels (GL_LINEAR_MIPMAP_LINEAR) at the same
+// coordinates (rk_paraboloid_encode, the rim clamp, rk_paraboloid_uv) otherwise.
+// The implicit LOD is known exactly by construction: (1) pixels step the paraboloid coordinates
+// by exactly one level-0 texel (st = (pixel + offset - 32) 2 / (g N), so uv steps by (1 / N, 0)
+// and (0, 1 / N) and rho = 1 in both GL's exact and llvmpipe's L-infinity form): LOD = bias,
+// compared on the 2 x 2 quads that lie inside the unit disk (the rim clamp bends the derivatives
+// of the others); (2) each 2 x 2 quad shares one direction (random over the whole sphere, behind
+// the window included, where the rim clamp acts): zero derivatives, so magnification (LOD 0)
+// whatever the bias.
+// Tolerance 1e-5 (measured: 2.4e-6 over every bias and both sets): the GPU's uv may differ from
+// the CPU's by an ulp or two (the encode's division and inversesqrt; 6e-8 near uv = 0.5), and a
+// uv shift of du moves a bilinear lookup by du N times the largest step between neighbouring
+// texels of this map (0.71): 2.7e-6 per ulp, so 1e-5 allows 3.7 ulps. Trilinear weights and the
+// level choice add nothing measurable here (fractional biases agree as well as integer ones: no
+// "brilinear" snapping). Ignoring the bias (texture(map, uv)) fails by 0.095 at bias 0.25 and up to
+// 0.53; dropping the rim clamp fails the random directions by 0.98 (mutated shader copies).
+// The directions come from a texture (texelFetch), not an SSBO: on llvmpipe (Mesa 22.3.6) a value
+// loaded from an SSBO reads as zero in the quad's derivatives when it comes from the quad's pixel
+// (x even, y odd) of gl_FragCoord, so dFdx/dFdy involving that pixel are garbage (uv derivatives
+// of 0.5 instead of 1 / 64); computed or texelFetch'ed inputs are fine.
+TEST(GpuParity, ParaboloidSampleBiased)
+{
+    const int n = 64;
+    const float g = 0.875f, hemi = -1.0f;  // a guard ring of 4 texels; the thesis's d0 = -z
+    const EnvImage base = bake_paraboloid_fn(checker_env, n, mat3(1.0f), hemi, g, 3);
+    const std::vector<EnvImage> levels = generate_env_mips(base, 7);  // 64 .. 1
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, static_cast<GLsizei>(levels.size()), GL_RGBA32F, n, n);
+    for (size_t l = 0; l < levels.size(); ++l) {
+        glTextureSubImage2D(tex, static_cast<GLint>(l), 0, 0, levels[l].width, levels[l].height, GL_RGB, GL_FLOAT,
+                            levels[l].rgb.data());
+    }
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTextureUnit(0, tex);
+    GLfloat max_bias = 0.0f;
+    glGetFloatv(GL_MAX_TEXTURE_LOD_BIAS, &max_bias);
+
+    // Rows 0..63 of the direction texture: the texel-stepping grid; rows 64..127: one random
+    // direction per 2 x 2 quad.
+    const int w = 64, h = 64;
+    std::vector<vec3> dv(static_cast<size_t>(2 * w * h));
+    std::vector<char> exact_lod(static_cast<size_t>(w * h), 0);
+    const double step = 2.0 / (static_cast<double>(g) * n);
+    auto st_of = [&](int x, int y) { return std::make_pair((x + 0.3 - 32.0) * step, (y + 0.6 - 32.0) * step); };
+    std::mt19937 rng(91);
+    std::normal_distribution<double> nd(0.0, 1.0);
+    std::vector<vec3> quad_dir(static_cast<size_t>(w * h / 4));
+    for (vec3& q : quad_dir) {
+        const double x = nd(rng), y = nd(rng), z = nd(rng), l = std::sqrt(x * x + y * y + z * z);
+        q = vec3(static_cast<float>(x / l), static_cast<float>(y / l), static_cast<float>(z / l));
+    }
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            // (1) float64 decode of st (hemi = -1): (2 s, 2 t, -(1 - s^2 - t^2)) / (1 + s^2 + t^2).
+            const auto [s, t] = st_of(x, y);
+            const double q = 1.0 + s * s + t * t;
+            const size_t i = static_cast<size_t>(y * w + x);
+            dv[i] = vec3(static_cast<float>(2.0 * s / q), static_cast<float>(2.0 * t / q),
+                         static_cast<float>(hemi * (1.0 - s * s - t * t) / q));
+            bool inside = true;
+            for (int k = 0; k < 4; ++k) {
+                const auto [qs, qt] = st_of((x & ~1) + (k & 1), (y & ~1) + (k >> 1));
+                inside = inside && qs * qs + qt * qt < 1.0;
+            }
+            exact_lod[i] = inside ? 1 : 0;
+            // (2)
+            dv[static_cast<size_t>(w * h) + i] = quad_dir[static_cast<size_t>((y / 2) * (w / 2) + x / 2)];
+        }
+    }
+    std::vector<float> dirs(dv.size() * 4u, 0.0f);
+    for (size_t i = 0; i < dv.size(); ++i) {
+        dirs[4 * i] = dv[i].x;
+        dirs[4 * i + 1] = dv[i].y;
+        dirs[4 * i + 2] = dv[i].z;
+    }
+    GLuint dir_tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &dir_tex);
+    glTextureStorage2D(dir_tex, 1, GL_RGBA32F, w, 2 * h);
+    glTextureSubImage2D(dir_tex, 0, 0, 0, w, 2 * h, GL_RGBA, GL_FLOAT, dirs.data());
+    glBindTextureUnit(1, dir_tex);
+    const std::string vs =
+        "#version 450 core\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));"
+        " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
+    std::string fs =
+        "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n"
+        "#include \"raykit/paraboloid_sample.glsl\"\n"
+        "layout(binding = 0) uniform sampler2D rk_map;\nlayout(binding = 1) uniform sampler2D rk_dirs;\n"
+        "layout(location = 0) uniform float rk_hemi;\nlayout(location = 1) uniform float rk_g;\n"
+        "layout(location = 2) uniform float rk_bias;\nlayout(location = 3) uniform int rk_row0;\n"
+        "layout(location = 0) out vec4 rk_color;\n"
+        "void main() {\n  vec3 d = texelFetch(rk_dirs, ivec2(gl_FragCoord.xy) + ivec2(0, rk_row0), 0).xyz;\n"
+        "  rk_color = rk_paraboloid_sample_biased(rk_map, d, rk_hemi, rk_g, rk_bias);\n}\n";
+    fs = raykit::resolve_shader_includes(fs, "biased.frag", parity::shader_dir(), {parity::shader_dir()});
+    GLuint prog = rkgl::build_program({{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}});
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glUseProgram(prog);
+    glUniform1f(0, hemi);
+    glUniform1f(1, g);
+    FloatTarget target(w, h);
+    auto render = [&](int row0, float bias) {
+        glUniform1f(2, bias);
+        glUniform1i(3, row0);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        return target.read();
+    };
+    // The CPU sampling at an explicit LOD (clamped to the chain, as GL clamps to the top level).
+    auto cpu = [&](vec3 d, double lod) {
+        vec2 st = rk_paraboloid_encode(d, hemi);
+        const float r2 = glm::dot(st, st);
+        if (r2 > 1.0f) st *= 1.0f / std::sqrt(r2);
+        const vec2 uv = rk_paraboloid_uv(st, g);
+        const double l = std::clamp(lod, 0.0, static_cast<double>(levels.size() - 1));
+        const size_t l0 = static_cast<size_t>(std::floor(l));
+        const double f = l - static_cast<double>(l0);
+        const glm::dvec3 a(sample_image_bilinear(levels[l0], uv));
+        if (f == 0.0) return a;
+        return glm::mix(a, glm::dvec3(sample_image_bilinear(levels[l0 + 1], uv)), f);
+    };
+    auto compare = [&](const std::vector<float>& px, int row0, double lod, bool grid, std::string& worst) {
+        double e = 0;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const size_t i = static_cast<size_t>(y * w + x);
+                if (grid && !exact_lod[i]) continue;
+                const vec3 d = dv[static_cast<size_t>(row0 * w) + i];
+                const glm::dvec3 want = lod <= 0.0 ? glm::dvec3(sample_paraboloid(levels[0], d, hemi, g)) : cpu(d, lod);
+                for (int c = 0; c < 3; ++c) {
+                    const double got = static_cast<double>(px[4 * i + static_cast<size_t>(c)]);
+                    if (std::abs(got - want[c]) > e) {
+                        e = std::abs(got - want[c]);
+                        worst = rktest::fmt("pixel", x, y, "dir", d.x, d.y, d.z, "channel", c, "gpu", got, "cpu",
+                                            want[c]);
+                    }
+                }
+            }
+        }
+        return e;
+    };
+    long n_exact = 0;
+    for (char c : exact_lod) n_exact += c;
+    std::printf("[parity] rk_paraboloid_sample_biased: %ld pixels with LOD = bias; GL_MAX_TEXTURE_LOD_BIAS %.1f\n",
+                n_exact, static_cast<double>(max_bias));
+    for (float bias : {-1.0f, 0.0f, 0.25f, 0.5f, 1.0f, 1.5f, 1.75f, 2.0f, 3.0f, 4.5f, 6.0f, 9.0f}) {
+        if (bias > max_bias) continue;
+        std::string worst;
+        const double e = compare(render(0, bias), 0, bias, true, worst);
+        std::printf("[parity] rk_paraboloid_sample_biased at bias %.2f (LOD %.2f) vs the CPU: max abs %.3g (%s)\n",
+                    static_cast<double>(bias), std::max(0.0, static_cast<double>(bias)), e, worst.c_str());
+        EXPECT_LT(e, 1e-5) << "bias " << bias << ": " << worst;
+    }
+    for (float bias : {0.0f, 2.0f}) {
+        std::string worst;
+        const double e = compare(render(h, bias), h, 0.0, false, worst);
+        std::printf(
+            "[parity] rk_paraboloid_sample_biased, random directions (zero derivatives: magnified) at bias %.0f vs "
+            "sample_paraboloid: max abs %.3g (%s)\n",
+            static_cast<double>(bias), e, worst.c_str());
+        EXPECT_LT(e, 1e-5) << "bias " << bias << ": " << worst;
+    }
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(prog);
+    glDeleteTextures(1, &dir_tex);
+    glDeleteTextures(1, &tex);
+}
