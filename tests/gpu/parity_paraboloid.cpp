@@ -8,6 +8,7 @@
 // raw adversarial inputs of every function.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "parity.hpp"
@@ -400,20 +401,26 @@ TEST(GpuParity, DualParaboloidSampling)
             dirs[4 * i + 2] = d.z;
         }
     }
-    GLuint ssbo = rkgl::make_buffer(dirs.size() * sizeof(float), dirs.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ssbo);
+    // The directions come from a texture (texelFetch), not a storage buffer: on Mesa llvmpipe 22.3
+    // the screen derivatives of values loaded from an SSBO are wrong for one pixel of each 2x2
+    // quad, which spoiled the derivative-based LOD of rk_dual_paraboloid_sample_grad (0.18 here).
+    GLuint dir_tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &dir_tex);
+    glTextureStorage2D(dir_tex, 1, GL_RGBA32F, w, h);
+    glTextureSubImage2D(dir_tex, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, dirs.data());
+    glBindTextureUnit(1, dir_tex);
     const std::string vs =
         "#version 450 core\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));"
         " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
     std::string fs =
         "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n"
         "#include \"raykit/paraboloid_sample.glsl\"\n"
-        "layout(std430, binding = 0) readonly buffer Dirs { vec4 rk_dirs[]; };\n"
+        "layout(binding = 1) uniform sampler2D rk_dirs;\n"
         "layout(binding = 0) uniform sampler2D rk_atlas;\n"
         "layout(location = 0) uniform float rk_g;\nlayout(location = 1) uniform float rk_lod;\n"
         "layout(location = 2) uniform float rk_max_lod;\nlayout(location = 3) uniform int rk_mode;\n"
         "layout(location = 0) out vec4 rk_color;\n"
-        "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n  vec3 d = rk_dirs[p.y * 64 + p.x].xyz;\n"
+        "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n  vec3 d = texelFetch(rk_dirs, p, 0).xyz;\n"
         "  if (rk_mode == 0) rk_color = rk_dual_paraboloid_sample_lod(rk_atlas, d, rk_g, rk_lod, rk_max_lod);\n"
         "  else if (rk_mode == 1) rk_color = rk_dual_paraboloid_sample_grad(rk_atlas, d, rk_g, rk_lod);\n"
         "  else rk_color = texture(rk_atlas, rk_dual_paraboloid_uv(d, rk_g));\n}\n";
@@ -493,11 +500,15 @@ TEST(GpuParity, DualParaboloidSampling)
         "[parity] rk_dual_paraboloid_sample_grad with bias %.0f (LOD %.2f..%.2f) vs the CPU at the derived LOD: "
         "max abs %.3g, on the seam quads %.3g\n",
         static_cast<double>(bias), lod_lo, lod_hi, e_biased, e_biased_seam);
-    EXPECT_LT(e_biased, 0.3);
+    // GL lets a driver approximate rho (and blend levels coarsely), so only llvmpipe, which CI runs
+    // and which computes the isotropic rho per pixel here (measured 0.016), gets the tight bound.
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
+    EXPECT_LT(e_biased, llvmpipe ? 0.03 : 0.3);
     EXPECT_LE(e_biased_seam, e_biased);
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
-    glDeleteBuffers(1, &ssbo);
+    glDeleteTextures(1, &dir_tex);
     glDeleteTextures(1, &atlas);
 }
 
