@@ -566,13 +566,19 @@ struct FacadeRig {
         glDeleteVertexArrays(1, &vao);
     }
     bool complete() const { return glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
-    /// The building material with `defs`; grid, seed, jitter and a window of `window_size` of each
-    /// room face set, the sky black. Throws on a compile or link error.
+    /// The building material with `defs`, in use; grid, seed, jitter and a window of `window_size`
+    /// of each room face set, the sky black. 0 (and a test failure) on a compile or link error.
     GLuint program(const std::vector<ShaderDefine>& defs, uint32_t seed, vec3 jitter, float window_size) const
     {
         const std::string dir = parity::shader_dir(), samples = dir + "/../samples/common/";
-        const GLuint prog = rkgl::build_program({{GL_VERTEX_SHADER, load_shader_file(samples + "interior_building.vert", {dir}, defs)},
-                                                 {GL_FRAGMENT_SHADER, load_shader_file(samples + "interior_building.frag", {dir}, defs)}});
+        GLuint prog = 0;
+        try {
+            prog = rkgl::build_program({{GL_VERTEX_SHADER, load_shader_file(samples + "interior_building.vert", {dir}, defs)},
+                                        {GL_FRAGMENT_SHADER, load_shader_file(samples + "interior_building.frag", {dir}, defs)}});
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << variant_name(defs) << ": " << e.what();
+            return 0;
+        }
         glUseProgram(prog);
         auto loc = [&](const char* nm) { return glGetUniformLocation(prog, nm); };
         const glm::mat4 id(1.0f);
@@ -684,13 +690,8 @@ TEST(GpuRender, InteriorRoomTexturesFetchTheSelectedTexel)
                                                     {"RK_IM_VARYING_WALLS", std::to_string(varying)},
                                                     {"RK_IM_COMPOSE_MODE", "1"}};
             SCOPED_TRACE(variant_name(defs));
-            GLuint prog = 0;
-            try {
-                prog = rig.program(defs, seed, jitter, window_size);
-            } catch (const std::exception& e) {
-                ADD_FAILURE() << e.what();
-                continue;
-            }
+            const GLuint prog = rig.program(defs, seed, jitter, window_size);
+            if (!prog) continue;
             glUniform1f(glGetUniformLocation(prog, "u_variants"), mode == 3 ? N : V);
             glUniform4f(glGetUniformLocation(prog, "u_atlas"), static_cast<float>(grid), static_cast<float>(cell), static_cast<float>(pad), 0.0f);
             for (GLuint u = 1; u <= 4; ++u) glBindTextureUnit(u, four[u - 1]);
@@ -787,13 +788,8 @@ TEST(GpuRender, InteriorRoomSeamsHaveNoMipSpikes)
         const std::vector<ShaderDefine> defs = {{"RK_IM_SHADING", "1"}, {"RK_IM_VARYING_WALLS", std::to_string(varying)},
                                                 {"RK_IM_COMPOSE_MODE", "1"}};
         SCOPED_TRACE(variant_name(defs));
-        GLuint prog = 0;
-        try {
-            prog = rig.program(defs, seed, jitter, window_size);
-        } catch (const std::exception& e) {
-            ADD_FAILURE() << e.what();
-            continue;
-        }
+        const GLuint prog = rig.program(defs, seed, jitter, window_size);
+        if (!prog) continue;
         glUniform1f(glGetUniformLocation(prog, "u_variants"), 1.0f);
         long checked = 0, seam_checked = 0, wrong = 0;
         double worst = 0, lod_min = 1e9, lod_max = -1e9;
