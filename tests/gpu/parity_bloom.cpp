@@ -1,5 +1,6 @@
 // GPU parity cases for shaders/raykit/bloom.glsl (see parity.hpp), plus the whole GPU bloom chain of
-// samples/common/rk_bloom_gl.hpp against raykit::bloom_reference, and the skip.
+// samples/common/rk_bloom_gl.hpp (the passes of shaders/raykit/bloom_passes.glsl: bright pass,
+// downsamples, merged-tap Gaussian, upsample) against raykit::bloom_reference, and the skip.
 #include <gtest/gtest.h>
 
 #include <chrono>
