@@ -358,6 +358,29 @@ struct FloatTarget {
     }
 };
 
+/// A w x h RGBA32F texture holding `rgba` (one level, for texelFetch), bound to `unit`.
+GLuint float_texture(int w, int h, const std::vector<float>& rgba, GLuint unit)
+{
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, GL_RGBA32F, w, h);
+    glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindTextureUnit(unit, t);
+    return t;
+}
+
+/// A program drawing one full-screen triangle (glDrawArrays(GL_TRIANGLES, 0, 3)) with the fragment
+/// stage `fs` (raykit includes resolved; `name` labels its errors).
+GLuint fullscreen_program(const std::string& fs, const char* name)
+{
+    const std::string vs =
+        "#version 450 core\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));"
+        " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
+    return rkgl::build_program(
+        {{GL_VERTEX_SHADER, vs},
+         {GL_FRAGMENT_SHADER, raykit::resolve_shader_includes(fs, name, parity::shader_dir(), {parity::shader_dir()})}});
+}
+
 }  // namespace
 
 TEST(GpuParity, DualParaboloidSampling)
@@ -404,15 +427,8 @@ TEST(GpuParity, DualParaboloidSampling)
     // The directions come from a texture (texelFetch), not a storage buffer: on Mesa llvmpipe 22.3
     // the screen derivatives of values loaded from an SSBO are wrong for one pixel of each 2x2
     // quad, which spoiled the derivative-based LOD of rk_dual_paraboloid_sample_grad (0.18 here).
-    GLuint dir_tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &dir_tex);
-    glTextureStorage2D(dir_tex, 1, GL_RGBA32F, w, h);
-    glTextureSubImage2D(dir_tex, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, dirs.data());
-    glBindTextureUnit(1, dir_tex);
-    const std::string vs =
-        "#version 450 core\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));"
-        " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
-    std::string fs =
+    const GLuint dir_tex = float_texture(w, h, dirs, 1);
+    const std::string fs =
         "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n"
         "#include \"raykit/paraboloid_sample.glsl\"\n"
         "layout(binding = 1) uniform sampler2D rk_dirs;\n"
@@ -424,8 +440,7 @@ TEST(GpuParity, DualParaboloidSampling)
         "  if (rk_mode == 0) rk_color = rk_dual_paraboloid_sample_lod(rk_atlas, d, rk_g, rk_lod, rk_max_lod);\n"
         "  else if (rk_mode == 1) rk_color = rk_dual_paraboloid_sample_grad(rk_atlas, d, rk_g, rk_lod);\n"
         "  else rk_color = texture(rk_atlas, rk_dual_paraboloid_uv(d, rk_g));\n}\n";
-    fs = raykit::resolve_shader_includes(fs, "sampling.frag", parity::shader_dir(), {parity::shader_dir()});
-    GLuint prog = rkgl::build_program({{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}});
+    const GLuint prog = fullscreen_program(fs, "sampling.frag");
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     glBindVertexArray(vao);
@@ -594,15 +609,8 @@ TEST(GpuParity, ParaboloidSampleBiased)
         dirs[4 * i + 1] = dv[i].y;
         dirs[4 * i + 2] = dv[i].z;
     }
-    GLuint dir_tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &dir_tex);
-    glTextureStorage2D(dir_tex, 1, GL_RGBA32F, w, 2 * h);
-    glTextureSubImage2D(dir_tex, 0, 0, 0, w, 2 * h, GL_RGBA, GL_FLOAT, dirs.data());
-    glBindTextureUnit(1, dir_tex);
-    const std::string vs =
-        "#version 450 core\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));"
-        " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
-    std::string fs =
+    const GLuint dir_tex = float_texture(w, 2 * h, dirs, 1);
+    const std::string fs =
         "#version 450 core\n#extension GL_GOOGLE_include_directive : require\n"
         "#include \"raykit/paraboloid_sample.glsl\"\n"
         "layout(binding = 0) uniform sampler2D rk_map;\nlayout(binding = 1) uniform sampler2D rk_dirs;\n"
@@ -611,8 +619,7 @@ TEST(GpuParity, ParaboloidSampleBiased)
         "layout(location = 0) out vec4 rk_color;\n"
         "void main() {\n  vec3 d = texelFetch(rk_dirs, ivec2(gl_FragCoord.xy) + ivec2(0, rk_row0), 0).xyz;\n"
         "  rk_color = rk_paraboloid_sample_biased(rk_map, d, rk_hemi, rk_g, rk_bias);\n}\n";
-    fs = raykit::resolve_shader_includes(fs, "biased.frag", parity::shader_dir(), {parity::shader_dir()});
-    GLuint prog = rkgl::build_program({{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}});
+    const GLuint prog = fullscreen_program(fs, "biased.frag");
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     glBindVertexArray(vao);
