@@ -271,18 +271,30 @@ glm::vec3 env_colour(glm::vec3 d)
     return sky + glm::vec3(3.0f, 2.8f, 2.4f) * sun;
 }
 
-GLuint make_texture_2d(const Image& img, GLenum wrap)
+/// The number of mip levels of a full chain for an n-texel side.
+int mip_levels(int n) { return 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(n)))); }
+
+/// Builds the mip chain of `tex` (level 0 uploaded) and sets trilinear filtering; `wrap` (S and T)
+/// unless 0.
+void finish_trilinear(GLuint tex, GLenum wrap)
 {
-    GLuint tex = 0;
-    const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(std::max(img.w, img.h)))));
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, levels, GL_RGBA8, img.w, img.h);
-    glTextureSubImage2D(tex, 0, 0, 0, img.w, img.h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
     glGenerateTextureMipmap(tex);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    if (wrap != 0) {
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    }
+}
+
+GLuint make_texture_2d(const Image& img, GLenum wrap)
+{
+    GLuint tex = 0;
+    const int levels = mip_levels(std::max(img.w, img.h));
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, levels, GL_RGBA8, img.w, img.h);
+    glTextureSubImage2D(tex, 0, 0, 0, img.w, img.h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+    finish_trilinear(tex, wrap);
     return tex;
 }
 
@@ -290,17 +302,13 @@ GLuint make_texture_array(const std::vector<Image>& layers, GLenum wrap)
 {
     GLuint tex = 0;
     const int n = layers.front().w;
-    const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(n))));
+    const int levels = mip_levels(n);
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tex);
     glTextureStorage3D(tex, levels, GL_RGBA8, n, n, static_cast<GLsizei>(layers.size()));
     for (size_t i = 0; i < layers.size(); ++i) {
         glTextureSubImage3D(tex, 0, 0, 0, static_cast<GLint>(i), n, n, 1, GL_RGBA, GL_UNSIGNED_BYTE, layers[i].rgba.data());
     }
-    glGenerateTextureMipmap(tex);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    finish_trilinear(tex, wrap);
     return tex;
 }
 
@@ -331,7 +339,7 @@ Image make_atlas(const std::vector<Image>& tiles, int per_side, int pad)
 GLuint make_room_cubes(const std::vector<Image>& variants, int count, int n)
 {
     GLuint tex = 0;
-    const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(n))));
+    const int levels = mip_levels(n);
     glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &tex);
     glTextureStorage3D(tex, levels, GL_RGBA8, n, n, 6 * count);
     // variants: family * 4 + variant, family 0 ceiling, 1 floor, 2 wall xy, 3 wall zy.
@@ -349,16 +357,14 @@ GLuint make_room_cubes(const std::vector<Image>& variants, int count, int n)
             glTextureSubImage3D(tex, 0, 0, 0, c * 6 + face, n, n, 1, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
         }
     }
-    glGenerateTextureMipmap(tex);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    finish_trilinear(tex, 0);
     return tex;
 }
 
 GLuint make_env_cube(int n)
 {
     GLuint tex = 0;
-    const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<double>(n))));
+    const int levels = mip_levels(n);
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &tex);
     glTextureStorage2D(tex, levels, GL_RGBA8, n, n);
     for (int face = 0; face < 6; ++face) {
@@ -368,9 +374,7 @@ GLuint make_env_cube(int n)
         }
         glTextureSubImage3D(tex, 0, 0, 0, face, n, n, 1, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
     }
-    glGenerateTextureMipmap(tex);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    finish_trilinear(tex, 0);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     return tex;
 }
