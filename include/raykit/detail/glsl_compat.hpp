@@ -41,6 +41,7 @@ using glm::abs;
 using glm::acos;
 using glm::asin;
 using glm::atan;
+using glm::bitCount;
 using glm::ceil;
 using glm::clamp;
 using glm::cos;
