@@ -1,0 +1,440 @@
+// raykit — detail/svo_pack.hpp: the second half of svo_build.hpp (include that instead): packing
+// Morton-sorted leaves into the format of docs/svo-format.md, and build_svo itself.
+#pragma once
+
+#include "raykit/svo_build.hpp"
+
+namespace raykit {
+namespace svo_detail {
+
+/// Float attribute sums of a node: area-weighted colour and normal, the unweighted means for
+/// nodes with no area below them (touch-only and interior voxels), the material of largest area.
+struct Sum {
+    float w = 0, n = 0;
+    glm::vec4 col{0.0f}, ucol{0.0f};
+    glm::vec3 nrm{0.0f}, unrm{0.0f};
+    // Material histogram: the (up to) 4 heaviest materials below the node with their area (a leaf
+    // with no area counts 1e-6). Exact majority by area with <= 4 materials in a subtree; beyond,
+    // the lightest are dropped when merging.
+    uint16_t mat[4] = {0, 0, 0, 0};
+    float mw[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+    uint16_t best_mat = 0;
+
+    void add_material(uint16_t m, float weight)
+    {
+        int slot = -1, lightest = 0;
+        for (int i = 0; i < 4; ++i) {
+            if (mw[i] >= 0.0f && mat[i] == m) slot = i;
+            if (mw[i] < mw[lightest]) lightest = i;
+        }
+        if (slot >= 0) {
+            mw[slot] += weight;
+        } else if (weight > mw[lightest]) {
+            mat[lightest] = m;
+            mw[lightest] = weight;
+        }
+        int b = 0;
+        for (int i = 1; i < 4; ++i)
+            if (mw[i] > mw[b]) b = i;
+        best_mat = mat[b];
+    }
+    void add_leaf(const Leaf& l)
+    {
+        const glm::vec4 c = SrgbTables::get().unpack(l.color);
+        const glm::vec3 nn = rk_svo_unpack_normal(l.normal);
+        col += c * l.weight;
+        ucol += c;
+        nrm += nn * l.weight;
+        unrm += nn;
+        w += l.weight;
+        n += 1.0f;
+        add_material(l.material, l.weight > 0.0f ? l.weight : 1e-6f);
+    }
+    void add(const Sum& s)
+    {
+        w += s.w; n += s.n; col += s.col; ucol += s.ucol; nrm += s.nrm; unrm += s.unrm;
+        for (int i = 0; i < 4; ++i)
+            if (s.mw[i] >= 0.0f) add_material(s.mat[i], s.mw[i]);
+    }
+    uint32_t color() const { return SrgbTables::get().pack(w > 0.0f ? col / w : ucol / std::max(n, 1.0f)); }
+    uint32_t normal() const { return rk_svo_pack_normal(w > 0.0f ? nrm : unrm); }
+};
+
+/// Writes one node's attributes at index i of the present streams.
+inline void put_attr(SvoTree& t, uint64_t i, const Sum& s)
+{
+    if (!t.color.empty()) t.color[i] = s.color();
+    if (!t.normal.empty()) t.normal[i] = s.normal();
+    if (!t.material.empty()) t.material[i] = s.best_mat;
+}
+inline void put_leaf_attr(SvoTree& t, uint64_t i, const Leaf& l)
+{
+    if (!t.color.empty()) t.color[i] = l.color;
+    if (!t.normal.empty()) t.normal[i] = l.normal;
+    if (!t.material.empty()) t.material[i] = l.material;
+}
+
+/// Packs Morton-sorted, unique leaves (keys at `depth`) into `t`.
+inline bool pack(const std::vector<Leaf>& leaves, uint32_t depth, uint32_t attributes, uint32_t pointer_bits,
+                 const std::vector<SvoMaterial>& materials, SvoTree& t, Memory& mem, SvoStatus& st)
+{
+    const uint32_t b = rk_svo_brick_levels(depth);
+    const uint32_t top = depth - b;  // brick level
+    t = SvoTree{};
+    t.depth = depth;
+    t.brick_levels = b;
+    t.attributes = attributes;
+    t.pointer_bits = pointer_bits;
+    t.level_nodes.assign(depth + 1u, 0u);
+    t.voxel_count = leaves.size();
+    // Structure, bottom-up: bricks (key, first leaf) then descriptor levels (key, mask, first child).
+    std::vector<uint64_t> brick_key;
+    std::vector<uint64_t> brick_first;  // leaf index where the brick starts
+    const uint32_t bs = 3u * b;
+    for (size_t i = 0; i < leaves.size(); ++i)
+        if (i == 0 || (leaves[i].key >> bs) != (leaves[i - 1].key >> bs)) {
+            brick_key.push_back(leaves[i].key >> bs);
+            brick_first.push_back(i);
+        }
+    brick_first.push_back(leaves.size());
+    const uint64_t nb = brick_key.size();
+    if (nb >= (1ull << 31)) return st.fail(SvoError::too_large, "more than 2^31 bricks");
+    struct Level {
+        std::vector<uint64_t> key;
+        std::vector<uint8_t> mask;
+        std::vector<uint32_t> first;  // index of the first child in the level below
+    };
+    std::vector<Level> lv(top);
+    {
+        const std::vector<uint64_t>* child = &brick_key;
+        for (uint32_t L = top; L-- > 0;) {
+            Level& P = lv[L];
+            for (size_t i = 0; i < child->size(); ++i) {
+                const uint64_t k = (*child)[i] >> 3;
+                if (P.key.empty() || P.key.back() != k) {
+                    P.key.push_back(k);
+                    P.mask.push_back(0);
+                    P.first.push_back(static_cast<uint32_t>(i));
+                }
+                P.mask.back() = static_cast<uint8_t>(P.mask.back() | (1u << ((*child)[i] & 7u)));
+            }
+            child = &P.key;
+        }
+    }
+    // An empty tree (no leaf) is a root with an empty mask: a descriptor, or a brick when depth <= 2.
+    if (leaves.empty()) {
+        t.level_nodes[0] = 1;
+        if (top > 0) {
+            t.words.assign(1, 0u);
+            t.desc_words = 1;
+        } else {
+            t.words.assign(2, 0u);
+            t.brick_count = 1;
+            t.brick_base.assign(1, 1u);
+        }
+        t.attr_count = t.desc_words + t.brick_count;
+        if (attributes & RK_SVO_ATTR_COLOR) t.color.assign(t.attr_count, 0u);
+        if (attributes & RK_SVO_ATTR_NORMAL) t.normal.assign(t.attr_count, 0u);
+        if (attributes & RK_SVO_ATTR_MATERIAL) { t.material.assign(t.attr_count, 0u); t.materials = materials; }
+        return true;
+    }
+    // Ordinal layout with far slots (fixpoint: a far slot shifts later nodes, which may make more
+    // pointers far; far flags only ever turn on, so it converges).
+    const uint32_t maxrel = (1u << pointer_bits) - 1u;
+    std::vector<std::vector<uint32_t>> pos(top), slot(top);
+    std::vector<std::vector<uint8_t>> far(top);
+    for (uint32_t L = 0; L < top; ++L) {
+        far[L].assign(lv[L].key.size(), 0);
+        pos[L].assign(lv[L].key.size(), 0);
+        slot[L].assign(lv[L].key.size(), 0);
+    }
+    uint64_t desc_words = 0;
+    {
+        for (int iter = 0;; ++iter) {
+            if (iter > 64) return st.fail(SvoError::too_large, "far-pointer layout did not converge");
+            uint64_t cur = 0;
+            for (uint32_t L = 0; L < top; ++L) {
+                const size_t n = lv[L].key.size();
+                // Sibling groups: children of consecutive level-(L-1) parents; the root alone at L = 0.
+                size_t g = 0;
+                while (g < n) {
+                    size_t e = n;
+                    if (L > 0) {
+                        // The parent of node g is the level-(L-1) node whose key is key >> 3.
+                        const uint64_t pk = lv[L].key[g] >> 3;
+                        e = g;
+                        while (e < n && (lv[L].key[e] >> 3) == pk) ++e;
+                    }
+                    for (size_t i = g; i < e; ++i) pos[L][i] = static_cast<uint32_t>(cur++);
+                    for (size_t i = g; i < e; ++i)
+                        if (far[L][i]) slot[L][i] = static_cast<uint32_t>(cur++);
+                    if (cur >= (1ull << 31)) return st.fail(SvoError::too_large, "more than 2^31 descriptors");
+                    g = e;
+                }
+            }
+            desc_words = cur;
+            // gpu_words() (geometry + brick_base) must be indexable by a uint.
+            if (desc_words + 3 * nb > (1ull << 32)) return st.fail(SvoError::too_large, "more than 2^32 words of geometry and brick bases");
+            bool changed = false;
+            for (uint32_t L = 0; L < top; ++L)
+                for (size_t i = 0; i < lv[L].key.size(); ++i) {
+                    const uint64_t first = (L + 1 < top) ? pos[L + 1][lv[L].first[i]] : desc_words + lv[L].first[i];
+                    if (!far[L][i] && first - pos[L][i] > maxrel) { far[L][i] = 1; changed = true; }
+                }
+            if (!changed) break;
+        }
+        t.desc_words = static_cast<uint32_t>(desc_words);
+        t.brick_count = static_cast<uint32_t>(nb);
+        t.words.assign(desc_words + 2 * nb, 0u);
+        if (!mem.add(4ull * t.words.size(), st, "packing the structure")) return false;
+        for (uint32_t L = 0; L < top; ++L) {
+            t.level_nodes[L] = lv[L].key.size();
+            for (size_t i = 0; i < lv[L].key.size(); ++i) {
+                const uint64_t first = (L + 1 < top) ? pos[L + 1][lv[L].first[i]] : desc_words + lv[L].first[i];
+                uint32_t w = lv[L].mask[i];
+                if (far[L][i]) {
+                    w |= RK_SVO_FAR_BIT | ((slot[L][i] - pos[L][i]) << RK_SVO_PTR_SHIFT);
+                    t.words[slot[L][i]] = static_cast<uint32_t>(first - pos[L][i]);
+                    ++t.far_slots;
+                } else {
+                    w |= static_cast<uint32_t>(first - pos[L][i]) << RK_SVO_PTR_SHIFT;
+                }
+                t.words[pos[L][i]] = w;
+            }
+        }
+        t.level_nodes[top] = nb;
+    }
+    // Bricks: masks, brick bases; sub-node counts; attribute count.
+    uint64_t attr = desc_words + nb;
+    {
+        t.brick_base.resize(nb);
+        for (uint64_t j = 0; j < nb; ++j) {
+            uint32_t lo = 0, hi = 0;
+            for (uint64_t i = brick_first[j]; i < brick_first[j + 1]; ++i) {
+                const uint32_t bit = static_cast<uint32_t>(leaves[i].key & ((1ull << bs) - 1));
+                if (bit < 32) lo |= 1u << bit; else hi |= 1u << (bit - 32);
+            }
+            t.words[desc_words + 2 * j] = lo;
+            t.words[desc_words + 2 * j + 1] = hi;
+            t.brick_base[j] = static_cast<uint32_t>(attr);
+            const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(glm::uvec2(lo, hi)))) : 0u;
+            if (b == 2) t.level_nodes[top + 1] += subs;
+            attr += subs + (brick_first[j + 1] - brick_first[j]);
+            if (attr >= (1ull << 32)) return st.fail(SvoError::too_large, "more than 2^32 attribute entries");
+        }
+        t.level_nodes[depth] = leaves.size();
+    }
+    t.attr_count = attr;
+    const uint32_t streams = static_cast<uint32_t>(bitCount(attributes));
+    if (!mem.add(4ull * (streams * attr + nb), st, "packing the attributes")) return false;
+    if (attributes & RK_SVO_ATTR_COLOR) t.color.assign(attr, 0u);
+    if (attributes & RK_SVO_ATTR_NORMAL) t.normal.assign(attr, 0u);
+    if (attributes & RK_SVO_ATTR_MATERIAL) { t.material.assign(attr, 0u); t.materials = materials; }
+    // Attributes, bottom-up: voxels, sub-nodes and the brick itself, then each descriptor level.
+    std::vector<Sum> child(nb), parent;
+    for (uint64_t j = 0; j < nb; ++j) {
+        const glm::uvec2 m(t.words[desc_words + 2 * j], t.words[desc_words + 2 * j + 1]);
+        const uint64_t base = t.brick_base[j];
+        const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(m))) : 0u;
+        // Sums of the brick's level-(depth-1) nodes (b = 2; each the sum of up to 8 voxels, material
+        // by area vote of its voxels) or of its voxels (b = 1), then the brick.
+        Sum parts[8];
+        uint32_t np = 0;
+        for (uint64_t i = brick_first[j]; i < brick_first[j + 1];) {
+            const uint64_t part = b == 2 ? (leaves[i].key >> 3) : leaves[i].key;
+            Sum vox[8];
+            uint32_t nv = 0;
+            for (; i < brick_first[j + 1] && (b == 2 ? (leaves[i].key >> 3) : leaves[i].key) == part; ++i) {
+                put_leaf_attr(t, base + subs + (i - brick_first[j]), leaves[i]);
+                vox[nv].add_leaf(leaves[i]);
+                ++nv;
+            }
+            Sum& p = parts[np++];
+            for (uint32_t k = 0; k < nv; ++k) p.add(vox[k]);
+        }
+        Sum brick;
+        for (uint32_t k = 0; k < np; ++k) {
+            if (b == 2) put_attr(t, base + k, parts[k]);
+            brick.add(parts[k]);
+        }
+        put_attr(t, desc_words + j, brick);
+        child[j] = brick;
+    }
+    for (uint32_t L = top; L-- > 0;) {
+        parent.assign(lv[L].key.size(), Sum{});
+        for (size_t i = 0; i < parent.size(); ++i) {
+            const uint32_t cnt = static_cast<uint32_t>(bitCount(static_cast<uint32_t>(lv[L].mask[i])));
+            for (uint32_t c = 0; c < cnt; ++c) parent[i].add(child[lv[L].first[i] + c]);
+            put_attr(t, pos[L][i], parent[i]);
+        }
+        child.swap(parent);
+    }
+    return true;
+}
+
+}  // namespace svo_detail
+
+inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& out, SvoStatus& st, SvoBuildStats* stats_out)
+{
+    using namespace svo_detail;
+    const Clock::time_point t0 = Clock::now();
+    st = SvoStatus{};
+    SvoBuildStats stats;
+    Prepared P;
+    if (!prepare(mesh, opt, P, stats, st, true)) {
+        if (stats_out) *stats_out = stats;
+        return false;
+    }
+    stats.estimated_peak_bytes = estimate(P, opt, mesh);
+    if (opt.memory_budget && stats.estimated_peak_bytes > opt.memory_budget) {
+        if (stats_out) *stats_out = stats;
+        char msg[200];
+        std::snprintf(msg, sizeof msg, "estimated peak memory %.1f MiB exceeds the budget of %.1f MiB at depth %u (try depth %u or a larger budget)",
+                      static_cast<double>(stats.estimated_peak_bytes) / 1048576.0, static_cast<double>(opt.memory_budget) / 1048576.0, P.depth,
+                      P.depth > 1 ? P.depth - 1 : 1u);
+        return st.fail(SvoError::budget_exceeded, msg);
+    }
+    Memory mem;
+    mem.budget = opt.memory_budget;
+    std::mutex progress_mutex;
+    std::atomic<bool> cancelled{false};
+    float last_fraction = 0.0f;
+    auto report = [&](float f, const char* stage) {
+        if (!opt.progress) return true;
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        if (cancelled) return false;
+        f = std::max(f, last_fraction);  // workers may report out of order
+        last_fraction = f;
+        if (!opt.progress(f, stage)) cancelled = true;
+        return !cancelled.load();
+    };
+    auto finish = [&](bool ok) {
+        stats.peak_bytes = mem.peak;
+        stats.seconds_total = seconds_since(t0);
+        if (stats_out) *stats_out = stats;
+        return ok;
+    };
+    if (!mem.add(P.tris.size() * sizeof(Tri), st, "snapping triangles")) return finish(false);
+    // Textures used by some material, filtered once.
+    P.textures.resize(mesh.texture_count);
+    {
+        std::vector<uint8_t> used(mesh.texture_count, 0);
+        for (int tex : P.material_texture)
+            if (tex >= 0) used[static_cast<size_t>(tex)] = 1;
+        parallel_for(opt, mesh.texture_count, [&](size_t i) {
+            if (used[i]) P.textures[i].prepare(mesh.textures[i]);
+        });
+        uint64_t tb = 0;
+        for (const Texture& tx : P.textures) tb += tx.bytes();
+        if (!mem.add(tb, st, "filtering textures")) return finish(false);
+    }
+    if (!report(0.0f, "binning")) return finish(st.fail(SvoError::cancelled, "cancelled"));
+    // Bin triangles into chunks of 2^cs voxels per side (exact overlap at chunk size).
+    const Clock::time_point tv0 = Clock::now();
+    const uint32_t cs = std::min<uint32_t>(P.depth, 5u);
+    const uint32_t chunk_level = P.depth - cs;
+    const int64_t chunks_side = int64_t(1) << chunk_level;
+    std::vector<std::vector<uint64_t>> bins(P.tris.size());
+    std::atomic<uint64_t> nbinned{0};
+    parallel_for(opt, P.tris.size(), [&](size_t t) {
+        const int64_t lo[3] = {0, 0, 0}, hi[3] = {chunks_side - 1, chunks_side - 1, chunks_side - 1};
+        std::vector<uint64_t>& out_bins = bins[t];
+        for_each_overlap(P.tris[t].v, kSvoSubvoxelBits + cs, lo, hi, [&](const int64_t c[3]) {
+            out_bins.push_back(morton(static_cast<uint32_t>(c[0]), static_cast<uint32_t>(c[1]), static_cast<uint32_t>(c[2])));
+        });
+        nbinned += out_bins.size();
+    });
+    std::vector<std::pair<uint64_t, uint32_t>> pairs;
+    if (!mem.add(nbinned * (sizeof(pairs[0]) + 8), st, "binning triangles")) return finish(false);
+    pairs.reserve(nbinned);
+    for (size_t t = 0; t < bins.size(); ++t) {
+        for (uint64_t k : bins[t]) pairs.emplace_back(k, static_cast<uint32_t>(t));
+        std::vector<uint64_t>().swap(bins[t]);
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<size_t> chunk_start;
+    for (size_t i = 0; i < pairs.size(); ++i)
+        if (i == 0 || pairs[i].first != pairs[i - 1].first) chunk_start.push_back(i);
+    chunk_start.push_back(pairs.size());
+    const size_t nchunks = chunk_start.size() - 1;
+    std::vector<uint32_t> tri_ids(pairs.size());
+    for (size_t i = 0; i < pairs.size(); ++i) tri_ids[i] = pairs[i].second;
+    // Voxelise every chunk in parallel; chunk outputs concatenated in chunk Morton order are the
+    // leaves in Morton order.
+    std::vector<std::vector<Leaf>> chunk_out(nchunks);
+    std::vector<std::unique_ptr<ChunkWork>> work_pool;
+    std::mutex pool_mutex;
+    std::atomic<size_t> done{0};
+    std::atomic<uint64_t> leaf_total{0};
+    std::atomic<bool> over_budget{false};
+    parallel_for(opt, nchunks, [&](size_t c) {
+        if (cancelled || over_budget) return;
+        std::unique_ptr<ChunkWork> W;
+        {
+            std::lock_guard<std::mutex> lock(pool_mutex);
+            if (!work_pool.empty()) { W = std::move(work_pool.back()); work_pool.pop_back(); }
+        }
+        if (!W) W.reset(new ChunkWork);
+        const uint64_t key = pairs[chunk_start[c]].first;
+        uint32_t org[3] = {0, 0, 0};
+        for (uint32_t l = 0; l < chunk_level; ++l)
+            for (int a = 0; a < 3; ++a) org[a] |= static_cast<uint32_t>((key >> (3 * l + static_cast<uint32_t>(a))) & 1u) << l;
+        for (int a = 0; a < 3; ++a) org[a] <<= cs;
+        voxelize_chunk(P, tri_ids.data() + chunk_start[c], chunk_start[c + 1] - chunk_start[c], org, cs, *W, chunk_out[c]);
+        const uint64_t tot = (leaf_total += chunk_out[c].size());
+        if (opt.memory_budget && tot * sizeof(Leaf) * 2 > opt.memory_budget) over_budget = true;
+        {
+            std::lock_guard<std::mutex> lock(pool_mutex);
+            work_pool.push_back(std::move(W));
+        }
+        const size_t d = ++done;
+        if ((d & 63u) == 0 || d == nchunks) report(0.05f + 0.75f * static_cast<float>(d) / static_cast<float>(nchunks), "voxelizing");
+    });
+    const uint64_t pool_bytes = work_pool.size() * (size_t(1) << (3 * cs)) * sizeof(Accum);
+    work_pool.clear();
+    if (cancelled) return finish(st.fail(SvoError::cancelled, "cancelled while voxelizing"));
+    if (!mem.add(pool_bytes + leaf_total * sizeof(Leaf), st, "voxelizing")) return finish(false);
+    mem.sub(pool_bytes);
+    if (over_budget) return finish(st.fail(SvoError::budget_exceeded, "memory budget exceeded while voxelizing"));
+    std::vector<std::pair<uint64_t, uint32_t>>().swap(pairs);
+    std::vector<uint32_t>().swap(tri_ids);
+    mem.sub(nbinned * (sizeof(std::pair<uint64_t, uint32_t>) + 8));
+    std::vector<Leaf> leaves;
+    if (!mem.add(leaf_total * sizeof(Leaf), st, "collecting voxels")) return finish(false);
+    leaves.reserve(leaf_total);
+    for (std::vector<Leaf>& v : chunk_out) {
+        leaves.insert(leaves.end(), v.begin(), v.end());
+        std::vector<Leaf>().swap(v);
+    }
+    mem.sub(leaf_total * sizeof(Leaf));
+    stats.surface_voxels = leaves.size();
+    stats.seconds_voxelize = seconds_since(tv0);
+    // Solid fill.
+    if (opt.fill == SvoFill::solid) {
+        const Clock::time_point tf0 = Clock::now();
+        if (!report(0.8f, "filling")) return finish(st.fail(SvoError::cancelled, "cancelled"));
+        std::vector<Leaf> interior;
+        if (!solid_fill(P, opt, leaves, interior, mem, st)) return finish(false);
+        stats.interior_voxels = interior.size();
+        if (!interior.empty()) {
+            if (!mem.add(interior.size() * sizeof(Leaf) * 2, st, "merging the interior")) return finish(false);
+            std::vector<Leaf> merged;
+            merged.reserve(leaves.size() + interior.size());
+            std::merge(leaves.begin(), leaves.end(), interior.begin(), interior.end(), std::back_inserter(merged),
+                       [](const Leaf& a, const Leaf& b2) { return a.key < b2.key; });
+            leaves.swap(merged);
+        }
+        stats.seconds_fill = seconds_since(tf0);
+    }
+    // Pack.
+    const Clock::time_point tp0 = Clock::now();
+    if (!report(0.9f, "packing")) return finish(st.fail(SvoError::cancelled, "cancelled"));
+    if (!pack(leaves, P.depth, opt.attributes, opt.pointer_bits, P.materials, out, mem, st)) return finish(false);
+    out.root_min = glm::vec3(P.root_min[0], P.root_min[1], P.root_min[2]);
+    out.root_size = P.root_size;
+    stats.seconds_pack = seconds_since(tp0);
+    report(1.0f, "done");
+    return finish(true);
+}
+
+}  // namespace raykit

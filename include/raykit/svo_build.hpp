@@ -1,0 +1,1063 @@
+// raykit — svo_build.hpp: triangle mesh -> packed sparse voxel octree (docs/svo-format.md).
+// C++ only, GLM only, no exceptions (errors through SvoStatus).
+//
+//   raykit::SvoTree tree;  raykit::SvoStatus st;  raykit::SvoBuildStats stats;
+//   raykit::SvoBuildOptions opt;  opt.depth = 11;
+//   if (!raykit::build_svo(mesh_data.view(), opt, tree, st, &stats)) log(st.message);
+//
+// What it computes (the definition the tests check against an independent brute-force oracle):
+// - Root cube: automatic = the smallest cube centred on the bounding box of the usable triangles;
+//   or the caller's fixed cube.
+// - Lattice: every vertex coordinate is snapped to an integer lattice of 2^(depth + 16) steps per
+//   root edge (svo_snap_coordinate: 16 sub-voxel bits; 2^-17 voxel of rounding at most, and none
+//   for coordinates already on the lattice, e.g. far from the origin where float spacing is
+//   coarser). All decisions below are exact integer arithmetic on the snapped triangle.
+// - Surface: voxel (i,j,k) is occupied iff the closed snapped triangle intersects the closed box
+//   [i, i+1] x [j, j+1] x [k, k+1] (voxel units) for some triangle: the 13-axis separating-axis
+//   test, exact (svo_triangle_box_overlap). Touching counts, so a triangle on a split plane marks
+//   the voxels on both sides, and a closed mesh gives a closed, 6-connected-leak-free shell.
+// - Solid: surface voxels plus every voxel whose centre is inside the mesh by crossing parity along
+//   +x (svo_centre_ray_crosses: exact point-in-projected-triangle with a top-left tie rule, so a ray
+//   through a shared edge or vertex counts once). Needs a closed mesh.
+// - Attributes: colour = the base colour (factor x texture, filtered over the part of the triangle
+//   inside the voxel: the clipped polygon is fanned into triangles, each sampled at its centroid
+//   with a trilinear mip level matching its texel footprint, weighted by 3D area), normal = area-
+//   weighted interpolated vertex normal (or face normal), material = that of the largest area.
+//   Inner nodes: area-weighted means of their children (LOD). Interior (solid-fill) voxels take the
+//   base colour of the material whose surface opens their span and carry a zero weight.
+// Cost: O(triangles x chunks touched + voxels touched), parallel over 32^3-voxel chunks.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "raykit/svo_mesh.hpp"
+
+namespace raykit {
+
+/// Sub-voxel bits of the snapping lattice.
+constexpr uint32_t kSvoSubvoxelBits = 16;
+
+namespace svo_detail {
+__extension__ typedef __int128 i128;
+
+inline double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
+
+/// Morton key of a cell (21 bits per axis), bit 3l = x bit l, 3l+1 = y, 3l+2 = z.
+inline uint64_t spread3(uint32_t v)
+{
+    uint64_t x = v & 0x1FFFFFu;
+    x = (x | (x << 32)) & 0x1F00000000FFFFull;
+    x = (x | (x << 16)) & 0x1F0000FF0000FFull;
+    x = (x | (x << 8)) & 0x100F00F00F00F00Full;
+    x = (x | (x << 4)) & 0x10C30C30C30C30C3ull;
+    x = (x | (x << 2)) & 0x1249249249249249ull;
+    return x;
+}
+inline uint64_t morton(uint32_t x, uint32_t y, uint32_t z) { return spread3(x) | (spread3(y) << 1) | (spread3(z) << 2); }
+}  // namespace svo_detail
+
+/// svo_morton: the Morton key of voxel `cell` (bits 3l, 3l+1, 3l+2 = bit l of x, y, z), the order
+/// of voxels in a tree. Exact for coordinates < 2^21.
+inline uint64_t svo_morton(glm::uvec3 cell) { return svo_detail::morton(cell.x, cell.y, cell.z); }
+
+/// svo_snap_coordinate: a mesh coordinate on the builder's lattice (2^(depth+16) steps per root
+/// edge, 0 at root_min): llround((p - root_min) * (2^(depth+16) / root_size)) in double.
+/// Exact when p - root_min is a multiple of the step; otherwise rounded to nearest (<= 1/2 step).
+inline int64_t svo_snap_coordinate(float p, float root_min, float root_size, uint32_t depth)
+{
+    const double scale = std::ldexp(1.0, static_cast<int>(depth + kSvoSubvoxelBits)) / static_cast<double>(root_size);
+    return std::llround((static_cast<double>(p) - static_cast<double>(root_min)) * scale);
+}
+
+/// svo_triangle_box_overlap: whether the closed triangle v[0..2] and the closed axis-aligned box
+/// [box_min, box_min + box_size]^3 intersect, both in lattice integers (|coordinate| < 2^40).
+/// The 13 separating axes (3 box normals, the triangle normal, 9 edge x box-axis cross products),
+/// each decided exactly in 128-bit integers: touching counts as overlap. A degenerate (collinear)
+/// triangle is tested as the segment it is. Cost: ~40 integer multiplies.
+inline bool svo_triangle_box_overlap(const int64_t v[3][3], const int64_t box_min[3], int64_t box_size)
+{
+    using svo_detail::i128;
+    for (int a = 0; a < 3; ++a) {  // box normals: bounding-box overlap
+        const int64_t lo = std::min(v[0][a], std::min(v[1][a], v[2][a]));
+        const int64_t hi = std::max(v[0][a], std::max(v[1][a], v[2][a]));
+        if (hi < box_min[a] || lo > box_min[a] + box_size) return false;
+    }
+    int64_t e[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 3; ++a) e[i][a] = v[(i + 1) % 3][a] - v[i][a];
+    // Triangle normal n = e0 x (v2 - v0) = e0 x -e2.
+    const i128 n[3] = {(i128)e[0][1] * -e[2][2] - (i128)e[0][2] * -e[2][1],
+                       (i128)e[0][2] * -e[2][0] - (i128)e[0][0] * -e[2][2],
+                       (i128)e[0][0] * -e[2][1] - (i128)e[0][1] * -e[2][0]};
+    {
+        // Plane: n.x = n.v0 must lie between the box's extreme projections.
+        i128 d = 0, lo = 0, hi = 0;
+        for (int a = 0; a < 3; ++a) {
+            d += n[a] * v[0][a];
+            const i128 p0 = n[a] * box_min[a], p1 = n[a] * (box_min[a] + box_size);
+            lo += p0 < p1 ? p0 : p1;
+            hi += p0 < p1 ? p1 : p0;
+        }
+        if (d < lo || d > hi) return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            // axis = e_i x unit_k: components (u, w) on the two other axes.
+            const int ka = (k + 1) % 3, kb = (k + 2) % 3;
+            // axis = e_i x unit_k: component e[kb] on axis ka and -e[ka] on axis kb.
+            const int64_t au = e[i][kb], aw = -e[i][ka];
+            i128 tlo = 0, thi = 0;
+            for (int j = 0; j < 3; ++j) {
+                const i128 p = (i128)au * v[j][ka] + (i128)aw * v[j][kb];
+                if (j == 0 || p < tlo) tlo = p;
+                if (j == 0 || p > thi) thi = p;
+            }
+            const i128 base = (i128)au * box_min[ka] + (i128)aw * box_min[kb];
+            const i128 blo = base + (i128)std::min<int64_t>(au, 0) * box_size + (i128)std::min<int64_t>(aw, 0) * box_size;
+            const i128 bhi = base + (i128)std::max<int64_t>(au, 0) * box_size + (i128)std::max<int64_t>(aw, 0) * box_size;
+            if (thi < blo || tlo > bhi) return false;
+        }
+    }
+    return true;
+}
+
+/// svo_centre_ray_crosses: whether the ray from lattice point (px, py, pz) along +x crosses the
+/// triangle v (lattice integers), and where (x_out, in lattice units). Exact point-in-triangle of
+/// (py, pz) in the triangle's yz projection with a top-left rule: after orienting the projection
+/// counter-clockwise, a point on an edge a->b counts iff (b.z - a.z) < 0, or the edge is
+/// horizontal with (b.y - a.y) > 0, so that a ray through an edge shared by two triangles of one
+/// sheet, or through a shared vertex, crosses exactly one of them. Triangles parallel to x (zero
+/// projected area) are never crossed. The crossing counts only when x_out > px (the caller
+/// compares; x_out is the plane's x at (py, pz) in double). Cost: ~12 integer multiplies.
+inline bool svo_centre_ray_crosses(const int64_t v[3][3], int64_t py, int64_t pz, double& x_out)
+{
+    using svo_detail::i128;
+    const int64_t ay = v[0][1], az = v[0][2];
+    const i128 area = (i128)(v[1][1] - ay) * (v[2][2] - az) - (i128)(v[1][2] - az) * (v[2][1] - ay);
+    if (area == 0) return false;
+    const int s = area > 0 ? 1 : -1;
+    for (int i = 0; i < 3; ++i) {
+        const int i0 = i, i1 = s > 0 ? (i + 1) % 3 : (i + 2) % 3;  // walk counter-clockwise
+        const int64_t dy = v[i1][1] - v[i0][1], dz = v[i1][2] - v[i0][2];
+        const i128 ef = (i128)dy * (pz - v[i0][2]) - (i128)dz * (py - v[i0][1]);
+        if (ef < 0) return false;
+        if (ef == 0 && !(dz < 0 || (dz == 0 && dy > 0))) return false;
+    }
+    // Plane x at (py, pz): n.x * x = n.v0 - n.y * py - n.z * pz, with n = (v1-v0) x (v2-v0).
+    double e1[3], e2[3];
+    for (int a = 0; a < 3; ++a) {
+        e1[a] = static_cast<double>(v[1][a] - v[0][a]);
+        e2[a] = static_cast<double>(v[2][a] - v[0][a]);
+    }
+    const double nx = e1[1] * e2[2] - e1[2] * e2[1];
+    const double ny = e1[2] * e2[0] - e1[0] * e2[2];
+    const double nz = e1[0] * e2[1] - e1[1] * e2[0];
+    x_out = static_cast<double>(v[0][0]) -
+            (ny * static_cast<double>(py - v[0][1]) + nz * static_cast<double>(pz - v[0][2])) / nx;
+    return true;
+}
+
+namespace svo_detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// One usable triangle on the lattice, with what attribute sampling needs.
+struct Tri {
+    int64_t v[3][3];
+    uint32_t src;       // index of the source triangle
+    uint16_t material;
+};
+
+/// A texture prepared for area filtering: linear RGBA float mip chain (box filtered).
+struct Texture {
+    struct Level { int w = 0, h = 0; std::vector<glm::vec4> px; };
+    std::vector<Level> levels;
+    SvoWrap wrap_s = SvoWrap::repeat, wrap_t = SvoWrap::repeat;
+
+    static float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+    void prepare(const SvoImageView& im)
+    {
+        levels.clear();
+        wrap_s = im.wrap_s;
+        wrap_t = im.wrap_t;
+        if (!im.pixels || im.width <= 0 || im.height <= 0 || im.channels < 1 || im.channels > 4) return;
+        const size_t stride = im.row_stride ? im.row_stride : static_cast<size_t>(im.width) * static_cast<size_t>(im.channels);
+        float lut[256];
+        for (int i = 0; i < 256; ++i) lut[i] = im.srgb ? srgb_to_linear(static_cast<float>(i) / 255.0f) : static_cast<float>(i) / 255.0f;
+        Level l0;
+        l0.w = im.width;
+        l0.h = im.height;
+        l0.px.resize(static_cast<size_t>(l0.w) * static_cast<size_t>(l0.h));
+        for (int y = 0; y < l0.h; ++y) {
+            const uint8_t* row = im.pixels + static_cast<size_t>(y) * stride;
+            for (int x = 0; x < l0.w; ++x) {
+                const uint8_t* p = row + static_cast<size_t>(x) * static_cast<size_t>(im.channels);
+                glm::vec4 c;
+                if (im.channels <= 2) {
+                    c = glm::vec4(lut[p[0]], lut[p[0]], lut[p[0]], im.channels == 2 ? static_cast<float>(p[1]) / 255.0f : 1.0f);
+                } else {
+                    c = glm::vec4(lut[p[0]], lut[p[1]], lut[p[2]], im.channels == 4 ? static_cast<float>(p[3]) / 255.0f : 1.0f);
+                }
+                l0.px[static_cast<size_t>(y) * static_cast<size_t>(l0.w) + static_cast<size_t>(x)] = c;
+            }
+        }
+        levels.push_back(std::move(l0));
+        while (levels.back().w > 1 || levels.back().h > 1) {
+            const Level& s = levels.back();
+            Level d;
+            d.w = std::max(1, s.w / 2);
+            d.h = std::max(1, s.h / 2);
+            d.px.resize(static_cast<size_t>(d.w) * static_cast<size_t>(d.h));
+            for (int y = 0; y < d.h; ++y)
+                for (int x = 0; x < d.w; ++x) {
+                    glm::vec4 sum(0.0f);
+                    int n = 0;
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx) {
+                            const int sx = std::min(2 * x + dx, s.w - 1), sy = std::min(2 * y + dy, s.h - 1);
+                            sum += s.px[static_cast<size_t>(sy) * static_cast<size_t>(s.w) + static_cast<size_t>(sx)];
+                            ++n;
+                        }
+                    d.px[static_cast<size_t>(y) * static_cast<size_t>(d.w) + static_cast<size_t>(x)] = sum / static_cast<float>(n);
+                }
+            levels.push_back(std::move(d));
+        }
+    }
+    uint64_t bytes() const
+    {
+        uint64_t b = 0;
+        for (const Level& l : levels) b += l.px.size() * sizeof(glm::vec4);
+        return b;
+    }
+    static int wrap(int i, int n, SvoWrap m)
+    {
+        if (m == SvoWrap::clamp) return std::min(std::max(i, 0), n - 1);
+        if (m == SvoWrap::mirror) {
+            const int p = 2 * n;
+            int k = i % p;
+            if (k < 0) k += p;
+            return k < n ? k : p - 1 - k;
+        }
+        int k = i % n;
+        return k < 0 ? k + n : k;
+    }
+    glm::vec4 bilinear(const Level& l, double u, double v) const
+    {
+        const double x = u * l.w - 0.5, y = v * l.h - 0.5;
+        const double fx = std::floor(x), fy = std::floor(y);
+        const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+        // Fold huge coordinates first so the int conversion cannot overflow.
+        const double px = std::fmod(fx, 2.0 * l.w), py = std::fmod(fy, 2.0 * l.h);
+        const int x0 = static_cast<int>(px), y0 = static_cast<int>(py);
+        auto at = [&](int xi, int yi) {
+            return l.px[static_cast<size_t>(wrap(yi, l.h, wrap_t)) * static_cast<size_t>(l.w) + static_cast<size_t>(wrap(xi, l.w, wrap_s))];
+        };
+        const glm::vec4 a = glm::mix(at(x0, y0), at(x0 + 1, y0), tx);
+        const glm::vec4 b = glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), tx);
+        return glm::mix(a, b, ty);
+    }
+    /// Trilinear sample at (u, v) with a footprint of `texels` level-0 texels across.
+    glm::vec4 sample(double u, double v, double texels) const
+    {
+        if (levels.empty()) return glm::vec4(1.0f);
+        if (!std::isfinite(u) || !std::isfinite(v)) return levels.back().px[0];
+        const double lod = texels > 1.0 ? std::log2(texels) : 0.0;
+        const int top = static_cast<int>(levels.size()) - 1;
+        if (lod >= top) return levels.back().px[0];
+        const int l = static_cast<int>(lod);
+        const float f = static_cast<float>(lod - l);
+        const glm::vec4 a = bilinear(levels[static_cast<size_t>(l)], u, v);
+        if (f <= 0.0f) return a;
+        return glm::mix(a, bilinear(levels[static_cast<size_t>(l + 1)], u, v), f);
+    }
+};
+
+/// The mesh, validated and snapped, plus what attribute evaluation needs.
+struct Prepared {
+    uint32_t depth = 0;
+    float root_min[3] = {0, 0, 0};
+    float root_size = 0;
+    std::vector<Tri> tris;
+    const SvoMesh* mesh = nullptr;
+    std::vector<SvoMaterial> materials;      // table (index = material id)
+    std::vector<int> material_texture;       // texture per material, -1 none
+    std::vector<Texture> textures;
+    bool has_normals = false, has_uvs = false;
+    uint32_t attributes = 0;
+    std::vector<Tri> outside;  // solid fill: triangles outside the root still count in the parity
+
+    glm::vec3 vertex_attr3(const float* base, size_t stride, uint32_t i) const
+    {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const uint8_t*>(base) + static_cast<size_t>(i) * stride);
+        return glm::vec3(p[0], p[1], p[2]);
+    }
+    glm::vec2 vertex_attr2(const float* base, size_t stride, uint32_t i) const
+    {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const uint8_t*>(base) + static_cast<size_t>(i) * stride);
+        return glm::vec2(p[0], p[1]);
+    }
+    uint32_t index(uint32_t tri, int k) const
+    {
+        return mesh->indices ? mesh->indices[3u * tri + static_cast<uint32_t>(k)] : 3u * tri + static_cast<uint32_t>(k);
+    }
+};
+
+/// Per-voxel accumulation while voxelising a chunk.
+struct Accum {
+    float area;        // area-weighted sums (voxel^2 units)
+    glm::vec4 col;
+    glm::vec3 nrm;
+    float touch;       // touch-only contributions (zero area), each weight 1
+    glm::vec4 tcol;
+    glm::vec3 tnrm;
+    float best_area;
+    uint16_t best_mat;
+    uint8_t used;
+};
+
+/// A leaf (or node) with its attributes, in Morton order.
+struct Leaf {
+    uint64_t key;
+    float weight;      // area of surface inside (voxel^2 at the leaf level); 0 for interior
+    uint32_t color;    // rk_svo_pack_color
+    uint32_t normal;   // rk_svo_pack_normal
+    uint16_t material;
+};
+
+/// Runs body(i) for i in [0, n) on the caller's parallel-for or a pool of `threads` threads.
+inline void parallel_for(const SvoBuildOptions& opt, size_t n, const std::function<void(size_t)>& body)
+{
+    if (n == 0) return;
+    if (opt.parallel_for) { opt.parallel_for(n, body); return; }
+    unsigned t = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : std::max(1u, std::thread::hardware_concurrency());
+    t = static_cast<unsigned>(std::min<size_t>(t, n));
+    if (t <= 1) { for (size_t i = 0; i < n; ++i) body(i); return; }
+    std::atomic<size_t> next{0};
+    auto worker = [&]() { for (size_t i; (i = next.fetch_add(1)) < n;) body(i); };
+    std::vector<std::thread> pool;
+    pool.reserve(t - 1);
+    for (unsigned k = 1; k < t; ++k) pool.emplace_back(worker);
+    worker();
+    for (std::thread& th : pool) th.join();
+}
+
+/// Clips a convex polygon (voxel-local positions + barycentrics) to the half-space s*(p[axis] - c) <= 0.
+struct PVert { float p[3]; float b[3]; };
+inline int clip_poly(const PVert* in, int n, PVert* out, int axis, float c, float s)
+{
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+        const PVert& a = in[i];
+        const PVert& b = in[i + 1 < n ? i + 1 : 0];
+        const float da = s * (a.p[axis] - c), db = s * (b.p[axis] - c);
+        if (da <= 0.0f) out[m++] = a;
+        if ((da < 0.0f && db > 0.0f) || (da > 0.0f && db < 0.0f)) {
+            const float t = da / (da - db);
+            PVert r;
+            for (int k = 0; k < 3; ++k) {
+                r.p[k] = a.p[k] + (b.p[k] - a.p[k]) * t;
+                r.b[k] = a.b[k] + (b.b[k] - a.b[k]) * t;
+            }
+            r.p[axis] = c;
+            out[m++] = r;
+        }
+    }
+    return m;
+}
+
+/// sRGB <-> 8-bit without pow, bit-identical to rk_svo_pack_color / rk_svo_unpack_color: decoding
+/// is a 256-entry table of rk_srgb_decode; encoding counts the thresholds (the smallest float that
+/// rk_svo_pack_unorm8(rk_srgb_encode(x)) maps to code k, found once by bisection on float bits;
+/// the map is monotone) below x.
+struct SrgbTables {
+    float decode[256];
+    float threshold[256];  // threshold[k]: smallest x with code >= k (k = 1..255)
+    SrgbTables()
+    {
+        for (int i = 0; i < 256; ++i) decode[i] = rk_srgb_decode(static_cast<float>(i) / 255.0f);
+        threshold[0] = 0.0f;
+        for (uint32_t k = 1; k < 256; ++k) {
+            uint32_t lo = 0, hi = 0x3F800000u;  // bit patterns of 0 and 1
+            while (lo < hi) {
+                const uint32_t mid = lo + (hi - lo) / 2;
+                float x;
+                std::memcpy(&x, &mid, 4);
+                if (rk_svo_pack_unorm8(rk_srgb_encode(x)) >= k) hi = mid; else lo = mid + 1;
+            }
+            std::memcpy(&threshold[k], &lo, 4);
+        }
+    }
+    uint32_t encode8(float x) const
+    {
+        if (!(x > 0.0f)) return 0u;
+        uint32_t c = 0;
+        for (uint32_t step = 128; step > 0; step >>= 1)
+            if (c + step < 256 && threshold[c + step] <= x) c += step;
+        return c;
+    }
+    uint32_t pack(const glm::vec4& c) const
+    {
+        return encode8(c.x) | (encode8(c.y) << 8) | (encode8(c.z) << 16) | (rk_svo_pack_unorm8(c.w) << 24);
+    }
+    glm::vec4 unpack(uint32_t w) const
+    {
+        return glm::vec4(decode[w & 0xFFu], decode[(w >> 8) & 0xFFu], decode[(w >> 16) & 0xFFu], static_cast<float>(w >> 24) / 255.0f);
+    }
+    static const SrgbTables& get()
+    {
+        static const SrgbTables t;
+        return t;
+    }
+};
+
+}  // namespace svo_detail
+
+/// estimate_svo_memory: an upper estimate of the builder's peak memory in bytes for this mesh and
+/// these options (what SvoBuildOptions::memory_budget is checked against before building), or 0
+/// with `st` set when the mesh or options are invalid. Surface voxels are bounded per triangle by
+/// its area and perimeter in voxels; solid fill adds the bounding volume of the mesh. Cost:
+/// O(triangles).
+inline uint64_t estimate_svo_memory(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoStatus& st);
+
+namespace svo_detail {
+
+inline bool resolve_depth(const SvoBuildOptions& opt, float extent, uint32_t& depth, SvoStatus& st)
+{
+    if (opt.voxel_size != 0.0f) {
+        if (!std::isfinite(opt.voxel_size) || !(opt.voxel_size > 0.0f))
+            return st.fail(SvoError::invalid_argument, "voxel_size must be 0 (use depth) or finite and > 0");
+        int d = 1;
+        while (d < static_cast<int>(RK_SVO_MAX_DEPTH) && static_cast<double>(extent) / std::ldexp(1.0, d) > opt.voxel_size) ++d;
+        if (static_cast<double>(extent) / std::ldexp(1.0, d) > opt.voxel_size)
+        {
+            char msg[160];
+            std::snprintf(msg, sizeof msg, "voxel_size %g needs more than %u levels for a root of %g", static_cast<double>(opt.voxel_size),
+                          RK_SVO_MAX_DEPTH, static_cast<double>(extent));
+            return st.fail(SvoError::invalid_argument, msg);
+        }
+        depth = static_cast<uint32_t>(d);
+        return true;
+    }
+    if (opt.depth < 1 || opt.depth > static_cast<int>(RK_SVO_MAX_DEPTH))
+        return st.fail(SvoError::invalid_argument, "depth " + std::to_string(opt.depth) + " is outside 1.." + std::to_string(RK_SVO_MAX_DEPTH));
+    depth = static_cast<uint32_t>(opt.depth);
+    return true;
+}
+
+/// Validates the mesh and options, picks the root cube, snaps the triangles.
+inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P, SvoBuildStats& stats, SvoStatus& st, bool snap)
+{
+    if (opt.pointer_bits < 4 || opt.pointer_bits > 23)
+        return st.fail(SvoError::invalid_argument, "pointer_bits " + std::to_string(opt.pointer_bits) + " is outside 4..23");
+    if (opt.attributes & ~(RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL))
+        return st.fail(SvoError::invalid_argument, "unknown attribute bits " + std::to_string(opt.attributes));
+    if (mesh.triangle_count > 0 && !mesh.positions) return st.fail(SvoError::invalid_argument, "mesh has triangles but no positions");
+    if (mesh.triangle_count > 0xFFFFFFFFull) return st.fail(SvoError::too_large, "more than 2^32 triangles");
+    P.mesh = &mesh;
+    stats.triangles_in = mesh.triangle_count;
+    const size_t pstride = mesh.position_stride ? mesh.position_stride : 3 * sizeof(float);
+    // Usable triangles: indices in range, finite positions.
+    std::vector<uint32_t> usable;
+    usable.reserve(mesh.triangle_count);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t t = 0; t < mesh.triangle_count; ++t) {
+        bool ok = true, finite = true;
+        glm::vec3 p[3];
+        for (int k = 0; k < 3 && ok; ++k) {
+            const uint64_t i = mesh.indices ? mesh.indices[3 * t + static_cast<size_t>(k)] : 3 * t + static_cast<size_t>(k);
+            if (i >= mesh.vertex_count) { ok = false; break; }
+            p[k] = P.vertex_attr3(mesh.positions, pstride, static_cast<uint32_t>(i));
+            if (!std::isfinite(p[k].x) || !std::isfinite(p[k].y) || !std::isfinite(p[k].z)) finite = false;
+        }
+        if (!ok) { ++stats.skipped_bad_index; continue; }
+        if (!finite) { ++stats.skipped_non_finite; continue; }
+        usable.push_back(static_cast<uint32_t>(t));
+        for (int k = 0; k < 3; ++k) { lo = glm::min(lo, p[k]); hi = glm::max(hi, p[k]); }
+    }
+    if (opt.fixed_bounds) {
+        if (!(opt.bounds_size > 0.0f) || !std::isfinite(opt.bounds_size) || !std::isfinite(opt.bounds_min.x) ||
+            !std::isfinite(opt.bounds_min.y) || !std::isfinite(opt.bounds_min.z))
+            return st.fail(SvoError::invalid_argument, "fixed bounds need a finite bounds_min and a finite bounds_size > 0");
+        for (int a = 0; a < 3; ++a) P.root_min[a] = opt.bounds_min[a];
+        P.root_size = opt.bounds_size;
+    } else if (!usable.empty()) {
+        const glm::vec3 ext = hi - lo;
+        float size = std::max(ext.x, std::max(ext.y, ext.z));
+        if (!(size > 0.0f) || !std::isfinite(size)) size = std::max(1.0f, std::fabs(lo.x) * 1e-6f);
+        for (int a = 0; a < 3; ++a) P.root_min[a] = (lo[a] + hi[a]) * 0.5f - size * 0.5f;
+        // Keep the cube covering the box after the float rounding of the centre.
+        for (int a = 0; a < 3; ++a)
+            while (P.root_min[a] > lo[a] || P.root_min[a] + size < hi[a]) size = std::nextafter(size, INFINITY),
+                P.root_min[a] = std::min(P.root_min[a], lo[a]);
+        P.root_size = size;
+    }
+    if (usable.empty()) return st.fail(SvoError::empty_mesh, "no usable triangle (" + std::to_string(stats.skipped_bad_index) +
+                                                                  " with a bad index, " + std::to_string(stats.skipped_non_finite) +
+                                                                  " with a non-finite position, of " + std::to_string(mesh.triangle_count) + ")");
+    if (!resolve_depth(opt, P.root_size, P.depth, st)) return false;
+    // Materials.
+    const size_t nmat = std::max<size_t>(1, mesh.materials ? mesh.material_count : 0);
+    if (nmat > 65535) return st.fail(SvoError::too_large, "more than 65535 materials");
+    P.materials.assign(nmat, SvoMaterial{});
+    P.material_texture.assign(nmat, -1);
+    if (mesh.materials)
+        for (size_t m = 0; m < mesh.material_count; ++m) {
+            P.materials[m] = mesh.materials[m].values;
+            const int tex = mesh.materials[m].base_color_texture;
+            P.material_texture[m] = (tex >= 0 && static_cast<size_t>(tex) < mesh.texture_count && mesh.uvs) ? tex : -1;
+        }
+    for (size_t m = 0; m < P.materials.size(); ++m) {
+        const SvoMaterial& mv = P.materials[m];
+        const bool fin = std::isfinite(mv.base_color.x) && std::isfinite(mv.base_color.y) && std::isfinite(mv.base_color.z) &&
+                         std::isfinite(mv.base_color.w) && std::isfinite(mv.reflectance) && std::isfinite(mv.absorption.x) &&
+                         std::isfinite(mv.absorption.y) && std::isfinite(mv.absorption.z);
+        if (!fin || !(mv.ior > 0.0f) || !std::isfinite(mv.ior))
+            return st.fail(SvoError::invalid_argument, "material " + std::to_string(m) + " has a non-finite value or an ior <= 0");
+    }
+    P.attributes = opt.attributes;
+    P.has_normals = mesh.normals != nullptr;
+    P.has_uvs = mesh.uvs != nullptr;
+    if (!snap) {
+        stats.triangles_used = usable.size();
+        return true;
+    }
+    // Snap to the lattice. Coordinates beyond +-2^40 (far outside fixed bounds) are rejected.
+    const int64_t side = int64_t(1) << (P.depth + kSvoSubvoxelBits);
+    const double limit = std::ldexp(1.0, 40);
+    P.tris.reserve(usable.size());
+    for (uint32_t t : usable) {
+        svo_detail::Tri tri;
+        tri.src = t;
+        tri.material = mesh.material_ids ? mesh.material_ids[t] : uint16_t(0);
+        if (tri.material >= nmat) tri.material = 0;
+        bool far = false;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 p = P.vertex_attr3(mesh.positions, pstride, P.index(t, k));
+            for (int a = 0; a < 3; ++a) {
+                const double q = (static_cast<double>(p[a]) - static_cast<double>(P.root_min[a])) *
+                                 (std::ldexp(1.0, static_cast<int>(P.depth + kSvoSubvoxelBits)) / static_cast<double>(P.root_size));
+                if (!(std::fabs(q) < limit)) { far = true; break; }
+                tri.v[k][a] = svo_snap_coordinate(p[a], P.root_min[a], P.root_size, P.depth);
+            }
+        }
+        if (far) { ++stats.skipped_outside; continue; }
+        bool outside = false;
+        for (int a = 0; a < 3; ++a) {
+            const int64_t l = std::min(tri.v[0][a], std::min(tri.v[1][a], tri.v[2][a]));
+            const int64_t h = std::max(tri.v[0][a], std::max(tri.v[1][a], tri.v[2][a]));
+            if (h < 0 || l > side) outside = true;
+        }
+        if (outside) {
+            ++stats.skipped_outside;
+            if (opt.fill == SvoFill::solid) P.outside.push_back(tri);
+            continue;
+        }
+        const int64_t e1[3] = {tri.v[1][0] - tri.v[0][0], tri.v[1][1] - tri.v[0][1], tri.v[1][2] - tri.v[0][2]};
+        const int64_t e2[3] = {tri.v[2][0] - tri.v[0][0], tri.v[2][1] - tri.v[0][1], tri.v[2][2] - tri.v[0][2]};
+        const i128 n0 = (i128)e1[1] * e2[2] - (i128)e1[2] * e2[1];
+        const i128 n1 = (i128)e1[2] * e2[0] - (i128)e1[0] * e2[2];
+        const i128 n2 = (i128)e1[0] * e2[1] - (i128)e1[1] * e2[0];
+        if (n0 == 0 && n1 == 0 && n2 == 0) { ++stats.skipped_degenerate; continue; }
+        P.tris.push_back(tri);
+    }
+    stats.triangles_used = P.tris.size();
+    if (P.tris.empty() && P.outside.empty())
+        return st.fail(SvoError::empty_mesh, "no usable triangle: " + std::to_string(stats.skipped_degenerate) + " degenerate, " +
+                                                 std::to_string(stats.skipped_outside) + " outside the bounds, " +
+                                                 std::to_string(stats.skipped_bad_index) + " with a bad index, " +
+                                                 std::to_string(stats.skipped_non_finite) + " non-finite, of " +
+                                                 std::to_string(mesh.triangle_count));
+    return true;
+}
+
+/// Bytes per leaf voxel the builder holds at its peak: the Morton-sorted leaves and the chunk
+/// outputs being gathered into them, the attribute streams (4 bytes per stream per node, 1.34
+/// nodes per voxel on surfaces), the bricks' attribute sums (~80 bytes per 12 voxels) and the
+/// structure.
+inline double peak_bytes_per_voxel(uint32_t attributes)
+{
+    return 2.0 * sizeof(Leaf) + 4.0 * 1.34 * static_cast<double>(bitCount(attributes)) + 7.0 + 1.5;
+}
+
+inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
+{
+    const size_t pstride = mesh.position_stride ? mesh.position_stride : 3 * sizeof(float);
+    const double vox = static_cast<double>(P.root_size) / std::ldexp(1.0, static_cast<int>(P.depth));
+    double voxels = 0;
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    const size_t n = mesh.triangle_count;
+    for (size_t t = 0; t < n; ++t) {
+        glm::dvec3 p[3];
+        bool ok = true;
+        for (int k = 0; k < 3; ++k) {
+            const uint64_t i = mesh.indices ? mesh.indices[3 * t + static_cast<size_t>(k)] : 3 * t + static_cast<size_t>(k);
+            if (i >= mesh.vertex_count) { ok = false; break; }
+            p[k] = glm::dvec3(P.vertex_attr3(mesh.positions, pstride, static_cast<uint32_t>(i))) / vox;
+            if (!std::isfinite(p[k].x + p[k].y + p[k].z)) ok = false;
+        }
+        if (!ok) continue;
+        const double area = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+        const double perim = glm::length(p[1] - p[0]) + glm::length(p[2] - p[1]) + glm::length(p[0] - p[2]);
+        // A plane through a grid touches at most sqrt(3) * area cells (plus the rims); closed boxes
+        // add a ring of touched neighbours along the perimeter.
+        voxels += std::sqrt(3.0) * area + 3.0 * perim + 27.0;
+        for (int k = 0; k < 3; ++k) { lo = glm::min(lo, p[k]); hi = glm::max(hi, p[k]); }
+    }
+    const double cells = std::ldexp(1.0, 3 * static_cast<int>(P.depth));
+    if (opt.fill == SvoFill::solid) {
+        const glm::dvec3 e = glm::max(hi - lo + 2.0, glm::dvec3(1.0));
+        voxels += e.x * e.y * e.z;
+    }
+    voxels = std::min(voxels, cells);
+    double bytes = voxels * peak_bytes_per_voxel(opt.attributes);
+    bytes += static_cast<double>(2 * n) * (sizeof(Tri) + 16.0);  // triangles + chunk bins
+    const unsigned t = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : std::max(1u, std::thread::hardware_concurrency());
+    bytes += static_cast<double>(t) * 32768.0 * (sizeof(Accum) + 4.0);
+    for (size_t i = 0; i < mesh.texture_count; ++i)
+        bytes += static_cast<double>(mesh.textures[i].width) * mesh.textures[i].height * sizeof(glm::vec4) * 4.0 / 3.0;
+    return static_cast<uint64_t>(bytes) + (1u << 20);
+}
+
+}  // namespace svo_detail
+
+inline uint64_t estimate_svo_memory(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoStatus& st)
+{
+    svo_detail::Prepared P;
+    SvoBuildStats stats;
+    if (!svo_detail::prepare(mesh, opt, P, stats, st, false)) return 0;
+    return svo_detail::estimate(P, opt, mesh);
+}
+
+namespace svo_detail {
+
+/// Evaluates one (voxel, triangle) contribution: clips the triangle to the voxel, integrates the
+/// base colour over the clipped polygon (per fan triangle when textured) and adds colour, normal
+/// and material to the accumulator. `tv` = vertices in voxel units relative to the chunk origin,
+/// (vx, vy, vz) = the voxel relative to the chunk origin.
+inline void contribute(const Prepared& P, const Tri& tri, const double tv[3][3], int vx, int vy, int vz, Accum& acc)
+{
+    PVert a[12], b[12];
+    int n = 3;
+    const int lo[3] = {vx, vy, vz};
+    for (int k = 0; k < 3; ++k) {
+        for (int c = 0; c < 3; ++c) a[k].p[c] = static_cast<float>(tv[k][c] - static_cast<double>(lo[c]));
+        a[k].b[0] = k == 0 ? 1.0f : 0.0f;
+        a[k].b[1] = k == 1 ? 1.0f : 0.0f;
+        a[k].b[2] = k == 2 ? 1.0f : 0.0f;
+    }
+    PVert* in = a;
+    PVert* out = b;
+    for (int axis = 0; axis < 3 && n > 0; ++axis) {
+        float mn = in[0].p[axis], mx = mn;
+        for (int k = 1; k < n; ++k) { mn = std::min(mn, in[k].p[axis]); mx = std::max(mx, in[k].p[axis]); }
+        if (mn < 0.0f) { n = clip_poly(in, n, out, axis, 0.0f, -1.0f); std::swap(in, out); }
+        if (n > 0 && mx > 1.0f) { n = clip_poly(in, n, out, axis, 1.0f, 1.0f); std::swap(in, out); }
+    }
+    const int mat = tri.material;
+    const int texi = P.material_texture[static_cast<size_t>(mat)];
+    const Texture* tex = texi >= 0 ? &P.textures[static_cast<size_t>(texi)] : nullptr;
+    const SvoMesh& m = *P.mesh;
+    const glm::vec4 factor = P.materials[static_cast<size_t>(mat)].base_color;
+    // Fan areas and the polygon's area-weighted barycentric centroid.
+    float total = 0.0f;
+    float cb[3] = {0.0f, 0.0f, 0.0f};
+    glm::vec4 csum(0.0f);
+    glm::dvec2 uv[3];
+    double texel_per_area = 0.0;
+    if (tex) {
+        const size_t ustride = m.uv_stride ? m.uv_stride : 2 * sizeof(float);
+        for (int k = 0; k < 3; ++k) uv[k] = glm::dvec2(P.vertex_attr2(m.uvs, ustride, P.index(tri.src, k)));
+        // Texels per unit of 3D area (constant over the triangle): the footprint of a fan piece.
+        const glm::dvec3 e1(tv[1][0] - tv[0][0], tv[1][1] - tv[0][1], tv[1][2] - tv[0][2]);
+        const glm::dvec3 e2(tv[2][0] - tv[0][0], tv[2][1] - tv[0][1], tv[2][2] - tv[0][2]);
+        const double a2 = glm::length(glm::cross(e1, e2));
+        const glm::dvec2 d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
+        if (a2 > 0.0 && !tex->levels.empty())
+            texel_per_area = std::fabs(d1.x * d2.y - d1.y * d2.x) * tex->levels[0].w * tex->levels[0].h / a2;
+    }
+    for (int k = 1; k + 1 < n; ++k) {
+        const glm::vec3 p0(in[0].p[0], in[0].p[1], in[0].p[2]), p1(in[k].p[0], in[k].p[1], in[k].p[2]),
+            p2(in[k + 1].p[0], in[k + 1].p[1], in[k + 1].p[2]);
+        const float ar = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (!(ar > 0.0f)) continue;
+        float bc[3];
+        for (int c = 0; c < 3; ++c) {
+            bc[c] = (in[0].b[c] + in[k].b[c] + in[k + 1].b[c]) * (1.0f / 3.0f);
+            cb[c] += bc[c] * ar;
+        }
+        if (tex) {
+            // The fan piece is split into 4^s congruent sub-triangles (midpoint subdivision) until each
+            // spans at most ~1 texel (s <= 4), and each is sampled at its centroid with the mip level
+            // of its footprint: an area average that stays inside the polygon (no bleeding across
+            // borders, as one coarse mip sample would). Texel extent of a triangle of area A ~ sqrt(2A).
+            const double foot = std::sqrt(std::max(0.0, 2.0 * static_cast<double>(ar) * texel_per_area));
+            const int sub = foot > 1.0 ? std::min(4, static_cast<int>(std::ceil(std::log2(foot)))) : 0;
+            const int g = 1 << sub;  // sub-triangles per edge: g^2 of them
+            const double sub_foot = foot / g;
+            glm::dvec2 t0 = glm::dvec2(0.0), t1 = glm::dvec2(0.0), t2 = glm::dvec2(0.0);
+            for (int c = 0; c < 3; ++c) {
+                t0 += uv[c] * static_cast<double>(in[0].b[c]);
+                t1 += uv[c] * static_cast<double>(in[k].b[c]);
+                t2 += uv[c] * static_cast<double>(in[k + 1].b[c]);
+            }
+            const glm::dvec2 du = (t1 - t0) / static_cast<double>(g), dv = (t2 - t0) / static_cast<double>(g);
+            glm::vec4 acc_s(0.0f);
+            for (int i = 0; i < g; ++i)
+                for (int j = 0; i + j < g; ++j) {
+                    // Upright sub-triangle (i, j) and, when it exists, the inverted one beside it.
+                    const glm::dvec2 up = t0 + du * (i + 1.0 / 3.0) + dv * (j + 1.0 / 3.0);
+                    acc_s += tex->sample(up.x, up.y, sub_foot);
+                    if (i + j + 1 < g) {
+                        const glm::dvec2 dn = t0 + du * (i + 2.0 / 3.0) + dv * (j + 2.0 / 3.0);
+                        acc_s += tex->sample(dn.x, dn.y, sub_foot);
+                    }
+                }
+            csum += acc_s * (ar / static_cast<float>(g * g));
+        }
+        total += ar;
+    }
+    const bool touch = !(total > 0.0f);
+    if (touch) {
+        // Touching only (an edge or a corner on the box): one sample at the touching points' mean.
+        cb[0] = cb[1] = cb[2] = 0.0f;
+        for (int k = 0; k < n; ++k)
+            for (int c = 0; c < 3; ++c) cb[c] += in[k].b[c] / static_cast<float>(n);
+        if (n == 0) cb[0] = cb[1] = cb[2] = 1.0f / 3.0f;
+    } else {
+        for (int c = 0; c < 3; ++c) cb[c] /= total;
+    }
+    glm::vec4 col = factor;
+    if (tex) {
+        if (touch) {
+            const glm::dvec2 u = uv[0] * static_cast<double>(cb[0]) + uv[1] * static_cast<double>(cb[1]) + uv[2] * static_cast<double>(cb[2]);
+            col *= tex->sample(u.x, u.y, 0.0);
+        } else {
+            col *= csum / total;
+        }
+    }
+    // Normal at the polygon's centroid: interpolated vertex normals are linear in the barycentrics,
+    // so this is their area-weighted mean over the polygon (normalised once).
+    glm::vec3 nrm;
+    if (P.has_normals) {
+        const size_t nstride = m.normal_stride ? m.normal_stride : 3 * sizeof(float);
+        nrm = P.vertex_attr3(m.normals, nstride, P.index(tri.src, 0)) * cb[0] +
+              P.vertex_attr3(m.normals, nstride, P.index(tri.src, 1)) * cb[1] +
+              P.vertex_attr3(m.normals, nstride, P.index(tri.src, 2)) * cb[2];
+    } else {
+        nrm = glm::vec3(0.0f);
+    }
+    const float nl = glm::length(nrm);
+    if (!(nl > 1e-30f) || !std::isfinite(nl)) {
+        nrm = glm::vec3(glm::cross(glm::dvec3(tv[1][0] - tv[0][0], tv[1][1] - tv[0][1], tv[1][2] - tv[0][2]),
+                                   glm::dvec3(tv[2][0] - tv[0][0], tv[2][1] - tv[0][1], tv[2][2] - tv[0][2])));
+        const float fl = glm::length(nrm);
+        nrm = fl > 0.0f && std::isfinite(fl) ? nrm / fl : glm::vec3(0.0f, 0.0f, 1.0f);
+    } else {
+        nrm /= nl;
+    }
+    if (!touch) {
+        acc.area += total;
+        acc.col += col * total;
+        acc.nrm += nrm * total;
+        if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri.material; }
+    } else {
+        acc.touch += 1.0f;
+        acc.tcol += col;
+        acc.tnrm += nrm;
+        if (acc.best_area <= 0.0f && !acc.used) acc.best_mat = tri.material;
+    }
+    acc.used = 1;
+}
+
+/// Voxelises the triangles of one chunk (cells [org, org + 2^cs)^3) into sorted leaves.
+struct ChunkWork {
+    std::vector<Accum> acc;        // by local Morton index
+    std::vector<uint64_t> touched; // bitmap of used accumulators
+};
+
+/// Calls f(cell) for every cell of size 2^shift lattice units (cell c spans [c 2^shift,
+/// (c+1) 2^shift] per axis) within [lo, hi] (cells, inclusive) whose closed box the closed
+/// triangle v overlaps: columns along the triangle's dominant axis, three edge axes per column,
+/// the plane and six edge axes per cell, all exact (the same 13 axes as svo_triangle_box_overlap).
+template <class F>
+inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int64_t lo_in[3], const int64_t hi_in[3], F&& f)
+{
+    const int64_t S = int64_t(1) << shift;
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        const int64_t mn = std::min(v[0][a], std::min(v[1][a], v[2][a]));
+        const int64_t mx = std::max(v[0][a], std::max(v[1][a], v[2][a]));
+        // Cell c touches [mn, mx] iff c S <= mx and (c + 1) S >= mn (arithmetic shifts floor).
+        lo[a] = std::max<int64_t>(lo_in[a], ((mn + (S - 1)) >> shift) - 1);
+        hi[a] = std::min<int64_t>(hi_in[a], mx >> shift);
+        if (lo[a] > hi[a]) return;
+    }
+    int64_t e[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 3; ++a) e[i][a] = v[(i + 1) % 3][a] - v[i][a];
+    const i128 n[3] = {(i128)e[0][1] * -e[2][2] - (i128)e[0][2] * -e[2][1], (i128)e[0][2] * -e[2][0] - (i128)e[0][0] * -e[2][2],
+                       (i128)e[0][0] * -e[2][1] - (i128)e[0][1] * -e[2][0]};
+    i128 d = 0;
+    for (int a = 0; a < 3; ++a) d += n[a] * v[0][a];
+    const double nd[3] = {static_cast<double>(n[0]), static_cast<double>(n[1]), static_cast<double>(n[2])};
+    int w = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::fabs(nd[a]) > std::fabs(nd[w])) w = a;
+    const int u = (w + 1) % 3, vv = (w + 2) % 3;
+    // Edge axes e_i x unit_k (components au on axis ka, aw on axis kb) and the triangle's
+    // projection on each; ax[k][i].
+    struct Axis { int64_t au, aw; i128 tlo, thi; int ka, kb; };
+    Axis ax[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i) {
+            Axis& A = ax[k][i];
+            A.ka = (k + 1) % 3;
+            A.kb = (k + 2) % 3;
+            A.au = e[i][A.kb];
+            A.aw = -e[i][A.ka];
+            for (int j = 0; j < 3; ++j) {
+                const i128 p = (i128)A.au * v[j][A.ka] + (i128)A.aw * v[j][A.kb];
+                if (j == 0 || p < A.tlo) A.tlo = p;
+                if (j == 0 || p > A.thi) A.thi = p;
+            }
+        }
+    auto axis_ok = [&](const Axis& A, const int64_t bmin[3]) {
+        const i128 base = (i128)A.au * bmin[A.ka] + (i128)A.aw * bmin[A.kb];
+        const i128 blo = base + (i128)std::min<int64_t>(A.au, 0) * S + (i128)std::min<int64_t>(A.aw, 0) * S;
+        const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * S + (i128)std::max<int64_t>(A.aw, 0) * S;
+        return !(A.thi < blo || A.tlo > bhi);
+    };
+    const double inv_s = 1.0 / static_cast<double>(S);
+    const double dd = static_cast<double>(d), inv_nw = 1.0 / nd[w];
+    for (int64_t cu = lo[u]; cu <= hi[u]; ++cu) {
+        for (int64_t cv = lo[vv]; cv <= hi[vv]; ++cv) {
+            int64_t bmin[3];
+            bmin[u] = cu * S;
+            bmin[vv] = cv * S;
+            bmin[w] = 0;
+            // The three edge axes perpendicular to the dominant axis depend on the column only.
+            if (!axis_ok(ax[w][0], bmin) || !axis_ok(ax[w][1], bmin) || !axis_ok(ax[w][2], bmin)) continue;
+            // The plane's w range over the column's square (double), plus one cell of margin; the
+            // exact plane test below decides.
+            double wlo = INFINITY, whi = -INFINITY;
+            for (int cc = 0; cc < 4; ++cc) {
+                const double pu = static_cast<double>(bmin[u] + ((cc & 1) ? S : 0));
+                const double pv = static_cast<double>(bmin[vv] + ((cc & 2) ? S : 0));
+                const double pw = (dd - nd[u] * pu - nd[vv] * pv) * inv_nw;
+                wlo = std::min(wlo, pw);
+                whi = std::max(whi, pw);
+            }
+            // Cell cw can touch the plane over this column iff cw S <= whi and (cw + 1) S >= wlo;
+            // a relative slack of 2^-20 cell covers the double rounding (the exact test decides).
+            int64_t k0 = lo[w], k1 = hi[w];
+            if (std::isfinite(wlo) && std::isfinite(whi) && std::fabs(wlo) < 1e15 && std::fabs(whi) < 1e15) {
+                const double slack = 1e-6 + (std::fabs(wlo) + std::fabs(whi)) * inv_s * 1e-12;
+                k0 = std::max<int64_t>(k0, static_cast<int64_t>(std::ceil(wlo * inv_s - slack)) - 1);
+                k1 = std::min<int64_t>(k1, static_cast<int64_t>(std::floor(whi * inv_s + slack)));
+            }
+            for (int64_t cw = k0; cw <= k1; ++cw) {
+                bmin[w] = cw * S;
+                i128 plo = 0, phi = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const i128 p0 = n[a] * bmin[a], p1 = n[a] * (bmin[a] + S);
+                    plo += p0 < p1 ? p0 : p1;
+                    phi += p0 < p1 ? p1 : p0;
+                }
+                if (d < plo || d > phi) continue;
+                if (!axis_ok(ax[u][0], bmin) || !axis_ok(ax[u][1], bmin) || !axis_ok(ax[u][2], bmin)) continue;
+                if (!axis_ok(ax[vv][0], bmin) || !axis_ok(ax[vv][1], bmin) || !axis_ok(ax[vv][2], bmin)) continue;
+                int64_t c[3];
+                c[u] = cu;
+                c[vv] = cv;
+                c[w] = cw;
+                f(c);
+            }
+        }
+    }
+}
+
+/// Voxelises the triangles of one chunk (cells [org, org + 2^cs)^3) into Morton-sorted leaves.
+inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t ntri, const uint32_t org[3], uint32_t cs,
+                           ChunkWork& W, std::vector<Leaf>& out)
+{
+    const uint32_t side = 1u << cs;
+    const size_t cells = size_t(1) << (3 * cs);
+    if (W.acc.size() < cells) {
+        W.acc.assign(cells, Accum{});
+        W.touched.assign((cells + 63) / 64, 0u);
+    }
+    const double inv_s = 1.0 / static_cast<double>(int64_t(1) << kSvoSubvoxelBits);
+    const bool attrs = P.attributes != 0;
+    const int64_t lo[3] = {org[0], org[1], org[2]};
+    const int64_t hi[3] = {int64_t(org[0]) + side - 1, int64_t(org[1]) + side - 1, int64_t(org[2]) + side - 1};
+    for (size_t ti = 0; ti < ntri; ++ti) {
+        const Tri& tri = P.tris[tri_ids[ti]];
+        double tv[3][3];  // voxel units relative to the chunk origin
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) tv[k][a] = static_cast<double>(tri.v[k][a]) * inv_s - static_cast<double>(lo[a]);
+        for_each_overlap(tri.v, kSvoSubvoxelBits, lo, hi, [&](const int64_t c[3]) {
+            const uint32_t li = static_cast<uint32_t>(morton(static_cast<uint32_t>(c[0] - lo[0]), static_cast<uint32_t>(c[1] - lo[1]),
+                                                             static_cast<uint32_t>(c[2] - lo[2])));
+            Accum& A = W.acc[li];
+            W.touched[li >> 6] |= uint64_t(1) << (li & 63u);
+            if (attrs) {
+                contribute(P, tri, tv, static_cast<int>(c[0] - lo[0]), static_cast<int>(c[1] - lo[1]), static_cast<int>(c[2] - lo[2]), A);
+            } else {
+                A.used = 1;
+                A.touch = 1.0f;
+            }
+        });
+    }
+    // Emit in Morton order: the chunk's key, then the local Morton index (bitmap scan).
+    const SrgbTables& srgb = SrgbTables::get();
+    const uint64_t chunk_key = morton(org[0] >> cs, org[1] >> cs, org[2] >> cs) << (3 * cs);
+    for (size_t wi = 0; wi < (cells + 63) / 64; ++wi) {
+        for (uint64_t bits = W.touched[wi]; bits; bits &= bits - 1) {
+            const uint32_t li = static_cast<uint32_t>(wi * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
+            Accum& A = W.acc[li];
+            Leaf l;
+            l.key = chunk_key | li;
+            if (A.area > 0.0f) {
+                l.weight = A.area;
+                l.color = srgb.pack(A.col / A.area);
+                l.normal = rk_svo_pack_normal(A.nrm);
+            } else {
+                l.weight = 0.0f;
+                l.color = srgb.pack(A.tcol / std::max(A.touch, 1.0f));
+                l.normal = rk_svo_pack_normal(A.tnrm);
+            }
+            l.material = A.best_mat;
+            out.push_back(l);
+            A = Accum{};
+        }
+        W.touched[wi] = 0;
+    }
+}
+
+}  // namespace svo_detail
+
+/// build_svo: voxelises `mesh` and packs it (see the top of this file for the exact definition and
+/// docs/svo-format.md for the layout). Returns false with `st` set when the options are invalid,
+/// the mesh has no usable triangle, the memory estimate or the measured use exceeds
+/// opt.memory_budget, the tree exceeds the format's limits, or progress() cancelled. `stats` (may
+/// be null) receives counts of skipped triangles, voxels, memory and times.
+inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& out, SvoStatus& st, SvoBuildStats* stats_out = nullptr);
+
+namespace svo_detail {
+
+/// Tracks the builder's big allocations against the budget.
+struct Memory {
+    uint64_t live = 0, peak = 0, budget = 0;
+    bool add(uint64_t b, SvoStatus& st, const char* what)
+    {
+        live += b;
+        peak = std::max(peak, live);
+        if (budget && live > budget)
+            return st.fail(SvoError::budget_exceeded, std::string("memory budget of ") + std::to_string(budget >> 20) +
+                                                          " MiB exceeded while " + what + " (" + std::to_string(live >> 20) + " MiB in use)");
+        return true;
+    }
+    void sub(uint64_t b) { live -= std::min(live, b); }
+};
+
+/// Solid fill: voxels whose centre is inside by +x crossing parity, minus the surface ones.
+inline bool solid_fill(const Prepared& P, const SvoBuildOptions& opt, const std::vector<Leaf>& surface, std::vector<Leaf>& interior,
+                       Memory& mem, SvoStatus& st)
+{
+    const int64_t S = int64_t(1) << kSvoSubvoxelBits;
+    const uint32_t side = 1u << P.depth;
+    // Crossings per row (j, k): gathered per triangle over the rows its yz box covers.
+    struct Cross { uint64_t row; double x; uint16_t mat; };
+    const size_t ntris = P.tris.size() + P.outside.size();
+    std::vector<std::vector<Cross>> per_tri(ntris);
+    std::atomic<uint64_t> total{0};
+    parallel_for(opt, ntris, [&](size_t t) {
+        const Tri& tri = t < P.tris.size() ? P.tris[t] : P.outside[t - P.tris.size()];
+        int64_t lo[3], hi[3];
+        for (int a = 1; a < 3; ++a) {
+            const int64_t mn = std::min(tri.v[0][a], std::min(tri.v[1][a], tri.v[2][a]));
+            const int64_t mx = std::max(tri.v[0][a], std::max(tri.v[1][a], tri.v[2][a]));
+            // Rows whose centre (j + 1/2) S lies in [mn, mx].
+            lo[a] = std::max<int64_t>(0, (mn - S / 2 + S - 1) >= 0 ? (mn - S / 2 + S - 1) / S : 0);
+            hi[a] = std::min<int64_t>(side - 1, (mx - S / 2) >= 0 ? (mx - S / 2) / S : -1);
+        }
+        std::vector<Cross>& c = per_tri[t];
+        for (int64_t j = lo[1]; j <= hi[1]; ++j)
+            for (int64_t k = lo[2]; k <= hi[2]; ++k) {
+                double x;
+                if (svo_centre_ray_crosses(tri.v, j * S + S / 2, k * S + S / 2, x))
+                    c.push_back({static_cast<uint64_t>(j) | (static_cast<uint64_t>(k) << 32), x, tri.material});
+            }
+        total += c.size();
+    });
+    if (!mem.add(total * sizeof(Cross), st, "collecting crossings for the solid fill")) return false;
+    std::vector<Cross> all;
+    all.reserve(total);
+    for (auto& v : per_tri) { all.insert(all.end(), v.begin(), v.end()); std::vector<Cross>().swap(v); }
+    std::sort(all.begin(), all.end(), [](const Cross& a, const Cross& b) { return a.row != b.row ? a.row < b.row : a.x < b.x; });
+    // Inside voxels: centre x in (x_2m, x_2m+1) for the sorted crossings of a row, i.e. an odd
+    // number of crossings ahead.
+    std::vector<Leaf> cand;
+    uint64_t cand_bytes = 0;
+    for (size_t i = 0; i < all.size();) {
+        size_t e = i;
+        while (e < all.size() && all[e].row == all[i].row) ++e;
+        const uint32_t j = static_cast<uint32_t>(all[i].row & 0xFFFFFFFFu), k = static_cast<uint32_t>(all[i].row >> 32);
+        const size_t n = e - i;
+        // Crossings x_0 < ... < x_{n-1}: a centre in (x_{m-1}, x_m) has n - m crossings ahead, so
+        // it is inside iff n - m is odd (x_{-1} = -inf). Centres are (x + 1/2) S.
+        const double hs = static_cast<double>(S) / 2, sd = static_cast<double>(S);
+        for (size_t m = (n % 2 == 1) ? 0 : 1; m < n; m += 2) {
+            const double xa = m == 0 ? -INFINITY : all[i + m - 1].x, xb = all[i + m].x;
+            const int64_t i0 = m == 0 ? 0 : std::max<int64_t>(0, static_cast<int64_t>(std::floor((xa - hs) / sd)) + 1);
+            const int64_t i1 = std::min<int64_t>(static_cast<int64_t>(side) - 1, static_cast<int64_t>(std::ceil((xb - hs) / sd)) - 1);
+            const uint16_t mat = all[i + (m == 0 ? m : m - 1)].mat;  // the surface that opens the span
+            for (int64_t x = i0; x <= i1; ++x) {
+                Leaf l;
+                l.key = morton(static_cast<uint32_t>(x), j, k);
+                l.weight = 0.0f;
+                l.color = rk_svo_pack_color(P.materials[mat].base_color);
+                l.normal = rk_svo_pack_normal(glm::vec3(0.0f));
+                l.material = mat;
+                cand.push_back(l);
+                if (cand.size() * sizeof(Leaf) > cand_bytes + (64u << 20)) {
+                    if (!mem.add(cand.size() * sizeof(Leaf) - cand_bytes, st, "filling the interior")) return false;
+                    cand_bytes = cand.size() * sizeof(Leaf);
+                }
+            }
+        }
+        i = e;
+    }
+    mem.sub(total * sizeof(Cross));
+    std::vector<Cross>().swap(all);
+    std::sort(cand.begin(), cand.end(), [](const Leaf& a, const Leaf& b) { return a.key < b.key; });
+    interior.clear();
+    size_t s = 0;
+    for (const Leaf& l : cand) {
+        while (s < surface.size() && surface[s].key < l.key) ++s;
+        if (s < surface.size() && surface[s].key == l.key) continue;
+        interior.push_back(l);
+    }
+    mem.sub(cand_bytes);
+    return true;
+}
+
+}  // namespace svo_detail
+}  // namespace raykit
+
+#include "raykit/detail/svo_pack.hpp"
