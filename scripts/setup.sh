@@ -11,7 +11,7 @@ PKGS=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0   # headless OpenGL 4.5 (llvmpipe)
   mesa-vulkan-drivers libvulkan-dev           # lavapipe, for users' Vulkan SPIR-V smoke runs
   libglfw3-dev                                # windowed samples (optional at build time)
-  libtinygltf-dev libstb-dev                  # scene loading, PNG output
+  libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF loading (tinygltf needs nlohmann/json), PNG output
   libgtest-dev libbenchmark-dev               # tests, bench
   gnuplot-nox python3                         # docs/benchmarks.md table + speed-vs-error plot
 )
