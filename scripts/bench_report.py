@@ -6,6 +6,9 @@ Usage: python3 scripts/bench_report.py --json build/bench.json [--out-dir docs]
 Writes OUT_DIR/benchmarks.md (machine context, then one section per bench file ("suite"), each with
 its plot and one table per family, in registration order) and, per suite with plotted families,
 OUT_DIR/img/bench_<suite>.dat and, when gnuplot is on PATH, OUT_DIR/img/bench_<suite>_speed_error.png.
+The octree build suite (bench/bench_svo.cpp: rows with a bytes_thesis counter) gets its own section
+instead: one table per mesh, the thesis's goals said met / missed / not measured, and
+OUT_DIR/img/bench_svo_build.dat and .png (build time and bytes per voxel vs depth).
 Pure standard library.
 
 Everything the report says about a benchmark comes from the JSON written by bench/bench_*.cpp
@@ -71,6 +74,7 @@ class Row:
         rgb = [entry.get("worst_at_" + c) for c in "rgb"]
         self.worst_rgb = rgb if all(v is not None for v in rgb) else None
         self.ns = ns_per_call(entry)
+        self.entry = entry  # every field and counter, for sections that read their own (octree build)
         self.cv = None  # relative run-to-run spread of the time, when repetitions were aggregated
         self.reps = 1
         # Registration order (stable even with --benchmark_enable_random_interleaving).
@@ -133,6 +137,19 @@ def load(path):
         rows.append(row)
     rows.sort(key=lambda r: r.order)  # stable: equal keys keep first-seen order
     return context, rows
+
+
+def load_errors(path):
+    """[(run name, error message)] of the benchmarks that skipped with an error (load() drops them)."""
+    with open(path, encoding="utf-8") as f:
+        data = json.load(f)
+    out = []
+    for e in data.get("benchmarks", []):
+        if e.get("error_occurred"):
+            run = e.get("run_name", e.get("name", ""))
+            if run not in [r for r, _ in out]:
+                out.append((run, e.get("error_message", "")))
+    return out
 
 
 # ------------------------------------------------------------------------------------------------
@@ -443,6 +460,391 @@ def write_plot(context, suite, img_dir):
 
 
 # ------------------------------------------------------------------------------------------------
+# Octree build (bench/bench_svo.cpp): rows BM_svo/<mesh>/depth:<d>/threads:<t>[/...] with size and
+# memory counters instead of an error; one table per mesh, a time / bytes-per-voxel plot and the
+# thesis's goals, each said to be met, missed or not measured.
+
+SVO_PNG = "bench_svo_build.png"
+SVO_DAT = "bench_svo_build.dat"
+SVO_ONE_K = "icosphere3"      # the ~1k-triangle mesh (thesis: 1,027 triangles)
+SVO_SEVENTY_K = "uvsphere256"  # the ~70k-triangle mesh
+SVO_GOAL_1K_S = 0.5
+SVO_GOAL_70K_S = 3.0
+SVO_GOAL_DEPTH13_BYTES = 4e9
+SVO_THESIS_S, SVO_THESIS_MB = 14.9, 113.0
+
+TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+
+
+def is_octree_suite(suite):
+    return any("bytes_thesis" in r.entry for r in suite.rows)
+
+
+class SvoRow:
+    """One octree build row: mesh, depth, threads, wall seconds and the counters."""
+
+    def __init__(self, row):
+        self.row = row
+        e = row.entry
+        self.mesh = row.variant
+        m = re.search(r"/depth:(\d+)", row.name)
+        self.depth = int(m.group(1)) if m else None
+        m = re.search(r"/threads:(\d+)", row.name)
+        self.threads = int(m.group(1)) if m else None
+        t = e.get("real_time")
+        self.seconds = t * TIME_UNITS.get(e.get("time_unit", "ns"), 1e-9) if t is not None else None
+        if e.get("seconds_median"):
+            self.seconds = e["seconds_median"]  # median over iterations, where the bench recorded it
+        self.c = e
+
+    def get(self, key):
+        return self.c.get(key)
+
+
+def svo_parse_name(name):
+    """(mesh, depth, threads) of a BM_svo/... run name, for skipped rows."""
+    parts = name.split("/")
+    mesh = parts[1] if len(parts) > 1 else name
+    d = re.search(r"/depth:(\d+)", name)
+    t = re.search(r"/threads:(\d+)", name)
+    return mesh, int(d.group(1)) if d else None, int(t.group(1)) if t else None
+
+
+class SvoData:
+    def __init__(self, context, suite, errors):
+        self.context = context
+        self.rows = [SvoRow(r) for r in suite.rows if r.entry.get("bytes_thesis") is not None]
+        listed = [m for m in context.get("raykit_svo:meshes", "").split(",") if m]
+        present = []
+        for r in self.rows:
+            if r.mesh not in present:
+                present.append(r.mesh)
+        prefix = "BM_%s/" % suite.name
+        self.skipped = [(n, msg) for n, msg in errors if n.startswith(prefix)]
+        for n, _ in self.skipped:
+            m = svo_parse_name(n)[0]
+            if m not in present:
+                present.append(m)
+        self.meshes = [m for m in listed if m in present] + [m for m in present if m not in listed]
+
+    def find(self, mesh, depth, threads):
+        return next((r for r in self.rows if r.mesh == mesh and r.depth == depth and r.threads == threads), None)
+
+    def depths(self, mesh):
+        ds = set(r.depth for r in self.rows if r.mesh == mesh and r.depth is not None)
+        ds |= set(d for n, _ in self.skipped for m, d, _t in [svo_parse_name(n)] if m == mesh and d is not None)
+        return sorted(ds)
+
+    def any_row(self, mesh, depth):
+        """The 1-thread row, else any row of that mesh and depth (size counters do not depend on threads)."""
+        r = self.find(mesh, depth, 1)
+        return r or next((x for x in self.rows if x.mesh == mesh and x.depth == depth), None)
+
+    def mesh_title(self, mesh):
+        return self.context.get("raykit_svo:mesh:" + mesh, mesh)
+
+    def skip_reason(self, mesh, depth, threads):
+        for n, msg in self.skipped:
+            if svo_parse_name(n) == (mesh, depth, threads):
+                return re.sub(r"^skipped:\s*", "", msg)
+        return None
+
+
+def fmt_seconds(s):
+    if s is None:
+        return "—"
+    if s >= 1.0:
+        return "%.2f s" % s
+    if s >= 0.01:
+        return "%.0f ms" % (s * 1e3)
+    return "%.1f ms" % (s * 1e3)
+
+
+def fmt_mb(b):
+    if b is None:
+        return "—"
+    if b == 0:
+        return "0"
+    mb = b / 1e6
+    return "%.0f" % mb if mb >= 100 else ("%.1f" % mb if mb >= 1 else "%.2f" % mb)
+
+
+def fmt_count(v):
+    if v is None:
+        return "—"
+    v = float(v)
+    if v >= 1e6:
+        return "%.2f M" % (v / 1e6)
+    if v >= 1e3:
+        return "%.1f k" % (v / 1e3)
+    return "%.0f" % v
+
+
+def fmt_f(v, digits=2):
+    return "—" if v is None else ("%." + str(digits) + "f") % v
+
+
+def svo_time(data, mesh, depth, threads):
+    """Wall seconds of a build: the row's own time, else the paired median of the 2-thread row."""
+    r = data.find(mesh, depth, threads)
+    if r is not None and r.seconds is not None:
+        return r.seconds
+    if threads == 1:
+        p = data.find(mesh, depth, 2)
+        if p is not None and p.get("t1_paired_s"):
+            return p.get("t1_paired_s")
+    return None
+
+
+def svo_measured_peak(r):
+    """The larger of the builder's accounting and the RSS rise (bytes), None without a row."""
+    if r is None:
+        return None
+    vals = [v for v in (r.get("peak_bytes"), r.get("rss_peak_bytes")) if v]
+    return max(vals) if vals else None
+
+
+def write_svo_plot(data, img_dir):
+    if not data.rows:
+        return None
+    os.makedirs(img_dir, exist_ok=True)
+    dat_path = os.path.join(img_dir, SVO_DAT)
+    png_path = os.path.join(img_dir, SVO_PNG)
+
+    def v(x):
+        return "?" if x is None else "%.6g" % x
+
+    blocks = []
+    for mesh in data.meshes:
+        lines = ["# mesh %s: %s" % (mesh, data.mesh_title(mesh)),
+                 "# depth seconds_1T seconds_2T B_struct_per_voxel B_color_per_voxel B_attr_per_voxel "
+                 "B_thesis_per_voxel"]
+        for d in data.depths(mesh):
+            r = data.any_row(mesh, d)
+            vox = r.get("voxels") if r else None
+            thesis = r.get("bytes_thesis") / vox if (r and vox) else None
+            lines.append("%d %s %s %s %s %s %s" % (
+                d, v(svo_time(data, mesh, d, 1)), v(svo_time(data, mesh, d, 2)),
+                v(r.get("B_struct_per_voxel") if r else None), v(r.get("B_color_per_voxel") if r else None),
+                v(r.get("B_attr_per_voxel") if r else None), v(thesis)))
+        blocks.append("\n".join(lines))
+    with open(dat_path, "w", encoding="utf-8") as f:
+        f.write("# raykit_bench svo: octree build time and bytes per voxel vs depth, written by "
+                "scripts/bench_report.py (one block per mesh)\n")
+        f.write("\n\n\n".join(blocks) + "\n")
+
+    if shutil.which("gnuplot") is None:
+        print("bench_report: warning: gnuplot not found on PATH, %s not drawn" % SVO_PNG, file=sys.stderr)
+        return None
+
+    def q(text):
+        return text.replace("'", "''")
+
+    colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"]
+    depths = sorted(set(d for m in data.meshes for d in data.depths(m)))
+    dlo, dhi = min(depths[0], 6) - 0.3, max(depths[-1], 11) + 0.3  # the anchors are at depth 11
+    dat = q(dat_path)
+    g = ["set terminal pngcairo size 1500,760 font 'Sans,10' enhanced",
+         "set output '%s'" % q(png_path),
+         "set datafile missing '?'",
+         "set multiplot layout 1,2 title 'raykit octree build (build\\_svo, surface, colour + normal + material): "
+         "wall time and bytes per voxel vs depth' font 'Sans,13'",
+         "set logscale y",
+         "set grid xtics ytics mytics lc rgb '#dddddd'",
+         "set xlabel 'depth (levels below the root)' offset 0,0.5",
+         "set bmargin 10",
+         "set xtics 1",
+         "set xrange [%g:%g]" % (dlo, dhi),
+         "set key below box font 'Sans,9' noenhanced samplen 4",
+         # Left: time.
+         "set title 'build time (wall clock; solid 1 thread, dashed 2 threads)' font 'Sans,11'",
+         "set ylabel 'seconds (log scale)'",
+         "set format y '%g'"]
+    plots = []
+    for i, mesh in enumerate(data.meshes):
+        c = colours[i % len(colours)]
+        plots.append("'%s' index %d using 1:2 with linespoints lw 2 pt 7 lc rgb '%s' dt 1 title '%s'" % (dat, i, c, q(mesh)))
+        plots.append("'%s' index %d using 1:3 with linespoints lw 2 pt 5 lc rgb '%s' dt 2 notitle" % (dat, i, c))
+    plots.append("'-' using 1:2 with points pt 9 ps 2 lc rgb 'black' title 'thesis: 1,027 triangles, depth 11, 14.9 s'")
+    plots.append("'-' using 1:2 with points pt 6 ps 2 lw 2 lc rgb '%s' title 'goal: ~1k triangles, depth 11, 0.5 s (2 cores)'" % colours[0])
+    plots.append("'-' using 1:2 with points pt 4 ps 2 lw 2 lc rgb '%s' title 'goal: ~70k triangles, depth 11, 3 s (2 cores)'" % colours[2 % len(colours)])
+    g.append("plot " + ", \\\n  ".join(plots))
+    g += ["11 %g" % SVO_THESIS_S, "e", "11 %g" % SVO_GOAL_1K_S, "e", "11 %g" % SVO_GOAL_70K_S, "e"]
+    # Right: bytes per voxel.
+    g += ["set title 'bytes per leaf voxel (solid structure, dashed colour, dotted all attributes, thin thesis format)' font 'Sans,11'",
+          "set ylabel 'bytes / voxel (log scale)'"]
+    plots = []
+    for i, mesh in enumerate(data.meshes):
+        c = colours[i % len(colours)]
+        plots.append("'%s' index %d using 1:4 with linespoints lw 2 pt 7 lc rgb '%s' dt 1 title '%s'" % (dat, i, c, q(mesh)))
+        plots.append("'%s' index %d using 1:5 with linespoints lw 2 pt 5 lc rgb '%s' dt 2 notitle" % (dat, i, c))
+        plots.append("'%s' index %d using 1:6 with linespoints lw 2 pt 13 lc rgb '%s' dt 3 notitle" % (dat, i, c))
+        plots.append("'%s' index %d using 1:7 with lines lw 1 lc rgb '%s' dt 1 notitle" % (dat, i, c))
+    plots.append("1 with lines lw 2 lc rgb 'black' dt 4 title 'ESVO ~1 B/voxel (goal: structure <= 1 at depth >= 10)'")
+    g.append("plot " + ", \\\n  ".join(plots))
+    g.append("unset multiplot")
+    res = subprocess.run(["gnuplot"], input="\n".join(g) + "\n", text=True, capture_output=True)
+    if res.returncode != 0 or not os.path.exists(png_path):
+        print("bench_report: warning: gnuplot failed:\n" + res.stderr, file=sys.stderr)
+        return None
+    if res.stderr.strip():
+        print("bench_report: gnuplot said:\n" + res.stderr, file=sys.stderr)
+    return png_path
+
+
+def svo_goals(data):
+    """Markdown bullets: each of the thesis-derived goals, met / MISSED / not measured, with numbers."""
+    out = []
+    deep = [r for r in data.rows if r.depth is not None and r.depth >= 10]
+    max_depth = max((r.depth for r in data.rows if r.depth is not None), default=None)
+    not_run = "not measured in this run (depths up to %s; `RAYKIT_BENCH_SVO_FULL=1` runs 6..11, 12..13 for %s)" % (
+        max_depth, SVO_ONE_K)
+
+    def verdict(ok):
+        return "**met**" if ok else "**missed**"
+
+    def span(lo, hi):
+        return "%.3f" % lo if "%.3f" % lo == "%.3f" % hi else "%.3f to %.3f" % (lo, hi)
+
+    def absent(mesh, depth, value=None, goal=None, unit=""):
+        """Why a goal's row is missing, plus, where value(row) is given, an extrapolation from the
+        deepest measured depth, if within two levels (x4 per level: surface voxels grow as the square of
+        the resolution; shallower rows are dominated by per-triangle work)."""
+        why = data.skip_reason(mesh, depth, 2) or data.skip_reason(mesh, depth, 1)
+        text = ("not measured: skipped, " + why) if why else not_run
+        if value is not None:
+            known = [(d, value(d)) for d in data.depths(mesh) if depth - 2 <= d < depth and value(d)]
+            if known:
+                d0, v0 = known[-1]
+                guess = v0 * 4.0 ** (depth - d0)
+                text += "; extrapolated x4 per level from depth %d: ~%s%s (%s)" % (
+                    d0, "%.3g" % guess, unit, "would miss" if guess > goal else "would meet")
+        return text
+
+    # 1. Structure bytes per voxel.
+    if deep:
+        worst = max(deep, key=lambda r: r.get("B_struct_per_voxel") or 0)
+        w = worst.get("B_struct_per_voxel")
+        out.append("- Structure <= 1 B/voxel at depth >= 10: %s — at most %.3f B/voxel (%s, depth %d) over %d rows."
+                   % (verdict(w <= 1.0), w, worst.mesh, worst.depth, len(deep)))
+    else:
+        out.append("- Structure <= 1 B/voxel at depth >= 10: " + not_run + ".")
+    # 2. Bytes against the thesis.
+    pool = deep or data.rows
+    if pool:
+        ratios = [r.get("thesis_ratio") for r in pool if r.get("thesis_ratio") is not None]
+        alls = [(r.get("bytes_total") / r.get("bytes_thesis")) for r in pool
+                if r.get("bytes_total") is not None and r.get("bytes_thesis")]
+        out.append("- <= 1/4 of the thesis's bytes for the same tree (structure + colour, as the thesis stores): %s — "
+                   "%s at depth %s%s; with colour + normal + material %s." % (
+                       verdict(max(ratios) <= 0.25), span(min(ratios), max(ratios)),
+                       ">= 10" if deep else "6..%s" % max_depth, "" if deep else " (deeper rows not run)",
+                       span(min(alls), max(alls))))
+    # 3, 4. Build times on 2 cores at depth 11.
+    for mesh, goal, what in ((SVO_ONE_K, SVO_GOAL_1K_S, "~1k triangles"), (SVO_SEVENTY_K, SVO_GOAL_70K_S, "~70k triangles")):
+        t = svo_time(data, mesh, 11, 2)
+        if t is None:
+            out.append("- %s (%s) at depth 11 <= %g s on 2 cores: %s." % (
+                what, mesh, goal, absent(mesh, 11, lambda d, m=mesh: svo_time(data, m, d, 2), goal, " s")))
+        else:
+            t1 = svo_time(data, mesh, 11, 1)
+            out.append("- %s (%s) at depth 11 <= %g s on 2 cores: %s — %s with 2 threads%s (%.1fx the goal)." % (
+                what, mesh, goal, verdict(t <= goal), fmt_seconds(t),
+                ", %s with 1" % fmt_seconds(t1) if t1 else "", t / goal))
+    # 5. Depth 13 memory.
+    r13 = data.find(SVO_ONE_K, 13, 2) or data.find(SVO_ONE_K, 13, 1)
+    if r13 is not None:
+        peak = svo_measured_peak(r13)
+        out.append("- Depth 13 (%s) within 4 GB: %s — measured peak %s GB (builder %s GB, RSS rise %s GB), estimate %s GB."
+                   % (SVO_ONE_K, verdict(peak is not None and peak <= SVO_GOAL_DEPTH13_BYTES),
+                      "%.2f" % (peak / 1e9) if peak else "—", "%.2f" % (r13.get("peak_bytes") / 1e9),
+                      "%.2f" % (r13.get("rss_peak_bytes") / 1e9), "%.2f" % (r13.get("est_peak_bytes") / 1e9)))
+    else:
+        def peak_gb(d):
+            p = svo_measured_peak(data.find(SVO_ONE_K, d, 2) or data.find(SVO_ONE_K, d, 1))
+            return p / 1e9 if p else None
+
+        out.append("- Depth 13 (%s) within 4 GB: %s." % (
+            SVO_ONE_K, absent(SVO_ONE_K, 13, peak_gb, SVO_GOAL_DEPTH13_BYTES / 1e9, " GB peak")))
+    return out
+
+
+def svo_section(context, suite, errors, png):
+    """The "Octree build" section (Markdown lines) for the suite of bench/bench_svo.cpp."""
+    data = SvoData(context, suite, errors)
+    md = ["## " + suite.title, ""]
+    loads = [r.get("load_avg_1m") for r in data.rows if r.get("load_avg_1m") is not None and r.get("load_avg_1m") >= 0]
+    load_text = (" The 1-minute load average after the rows ranged from %.2f to %.2f on %s CPUs: above the CPU count "
+                 "other jobs competed for the cores, which slows 2-thread builds most." % (
+                     min(loads), max(loads), context.get("num_cpus", "?"))) if loads else ""
+    md.append("Source: `%s`. Machine: %s CPUs (see [Machine](#machine)); the times are wall clock and depend on "
+              "what else the machine runs.%s" % (suite.source or "bench/bench_svo.cpp", context.get("num_cpus", "?"),
+                                                   load_text))
+    md.append("")
+    if suite.about:
+        md.append(suite.about)
+        md.append("")
+    # Thesis anchors and the goals.
+    t11 = svo_time(data, SVO_ONE_K, 11, 2)
+    r11 = data.any_row(SVO_ONE_K, 11)
+    ours = ""
+    if t11 is not None and r11 is not None:
+        ours = (" The ~1k-triangle mesh here (%s) at depth 11: %s on 2 threads, %s MB structure + colour "
+                "(%s MB with normals and materials)." % (
+                    SVO_ONE_K, fmt_seconds(t11), fmt_mb(r11.get("bytes_struct") + r11.get("bytes_color")),
+                    fmt_mb(r11.get("bytes_total"))))
+    md.append("Anchors: Gritzner, *3D graphics rendering using a polygon-voxel-hybrid approach*, builds a 1,027-triangle "
+              "mesh at depth 11 in %.1f s into a %.0f MB file (its format: 4 + 8 (1 + 8 N) bytes for N non-leaf "
+              "nodes); Laine and Karras's efficient sparse voxel octrees (ESVO) need about 1 byte of structure per "
+              "voxel.%s Goals derived from them:" % (SVO_THESIS_S, SVO_THESIS_MB, ours))
+    md.append("")
+    md.extend(svo_goals(data))
+    md.append("")
+    if data.rows:
+        md.append("### Build time and bytes per voxel vs depth")
+        md.append("")
+        if png:
+            md.append("![octree build time and bytes per voxel vs depth](img/%s)" % SVO_PNG)
+        else:
+            md.append("_(plot not drawn: gnuplot was not available when this report was generated)_")
+        md.append("")
+    for mesh in data.meshes:
+        md.append("### " + md_escape(data.mesh_title(mesh)))
+        md.append("")
+        md.append("| depth | voxels | time 1T | time 2T | speed-up (paired) | Mvoxels/s (2T) | B/voxel structure "
+                  "| B/voxel colour | B/voxel all attr. | total MB | thesis MB | vs thesis | peak MB est. / builder / RSS |")
+        md.append("|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        notes = []
+        for d in data.depths(mesh):
+            r = data.any_row(mesh, d)
+            r2 = data.find(mesh, d, 2)
+            for t in (1, 2):
+                why = data.skip_reason(mesh, d, t)
+                if why:
+                    notes.append("depth %d, %d thread%s: %s" % (d, t, "" if t == 1 else "s", why))
+            if r is None:
+                md.append("| %d | — | — | — | — | — | — | — | — | — | — | — | (skipped) |" % d)
+                continue
+            pr = r2 or r
+            speed = r2.get("speedup_paired") if r2 is not None else None
+            t2 = svo_time(data, mesh, d, 2)
+            vps = r.get("voxels") / t2 if (t2 and r.get("voxels")) else None
+            md.append("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s / %s / %s |" % (
+                d, fmt_count(r.get("voxels")), fmt_seconds(svo_time(data, mesh, d, 1)),
+                fmt_seconds(svo_time(data, mesh, d, 2)),
+                "%.2f (%d pair%s)" % (speed, r2.get("pairs"), "" if r2.get("pairs") == 1 else "s") if speed else "—",
+                fmt_f(vps / 1e6 if vps else None), fmt_f(r.get("B_struct_per_voxel"), 3),
+                fmt_f(r.get("B_color_per_voxel")), fmt_f(r.get("B_attr_per_voxel")), fmt_mb(r.get("bytes_total")),
+                fmt_mb(r.get("bytes_thesis")), fmt_f(r.get("thesis_ratio"), 3),
+                fmt_mb(pr.get("est_peak_bytes")), fmt_mb(pr.get("peak_bytes")), fmt_mb(pr.get("rss_peak_bytes"))))
+        md.append("")
+        if notes:
+            md.append("Skipped: " + "; ".join(md_escape(n) for n in notes) + ".")
+            md.append("")
+    return md
+
+
+# ------------------------------------------------------------------------------------------------
 # Markdown
 
 
@@ -491,7 +893,7 @@ def interior_summary(out_dir):
     return md
 
 
-def write_markdown(context, rows, suites, out_dir, pngs):
+def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     pngs_written = [os.path.basename(p) for p in pngs.values() if p]
     sources = [s.source for s in suites if s.source]
 
@@ -529,6 +931,9 @@ def write_markdown(context, rows, suites, out_dir, pngs):
     md.append("- **worst at**: the swept input where the max abs error occurs.")
     md.append("")
     for suite in suites:
+        if is_octree_suite(suite):
+            md.extend(svo_section(context, suite, errors, pngs.get(suite.name)))
+            continue
         md.append("## " + suite.title)
         md.append("")
         intro = []
@@ -605,14 +1010,19 @@ def main(argv=None):
     if not rows:
         print("bench_report: no benchmarks in %s" % args.json, file=sys.stderr)
         return 1
+    errors = load_errors(args.json)
     suites = make_suites(context, rows)
     os.makedirs(args.out_dir, exist_ok=True)
     pngs = {}
     for suite in suites:
-        pngs[suite.name] = write_plot(context, suite, os.path.join(args.out_dir, "img"))
-    if not any(s.plot_families for s in suites):
+        img_dir = os.path.join(args.out_dir, "img")
+        if is_octree_suite(suite):
+            pngs[suite.name] = write_svo_plot(SvoData(context, suite, errors), img_dir)
+        else:
+            pngs[suite.name] = write_plot(context, suite, img_dir)
+    if not any(s.plot_families or is_octree_suite(s) for s in suites):
         print("bench_report: nothing to plot", file=sys.stderr)
-    md = write_markdown(context, rows, suites, args.out_dir, pngs)
+    md = write_markdown(context, rows, suites, args.out_dir, pngs, errors)
     drawn = [p for p in pngs.values() if p]
     print("bench_report: wrote %s (%d benchmarks)%s" % (md, len(rows), "".join(", %s" % p for p in drawn)))
     return 0
