@@ -356,30 +356,6 @@ inline void parallel_for(const SvoBuildOptions& opt, size_t n, const std::functi
     for (std::thread& th : pool) th.join();
 }
 
-/// Clips a convex polygon (voxel-local positions + barycentrics) to the half-space s*(p[axis] - c) <= 0.
-struct PVert { float p[3]; float b[3]; };
-inline int clip_poly(const PVert* in, int n, PVert* out, int axis, float c, float s)
-{
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-        const PVert& a = in[i];
-        const PVert& b = in[i + 1 < n ? i + 1 : 0];
-        const float da = s * (a.p[axis] - c), db = s * (b.p[axis] - c);
-        if (da <= 0.0f) out[m++] = a;
-        if ((da < 0.0f && db > 0.0f) || (da > 0.0f && db < 0.0f)) {
-            const float t = da / (da - db);
-            PVert r;
-            for (int k = 0; k < 3; ++k) {
-                r.p[k] = a.p[k] + (b.p[k] - a.p[k]) * t;
-                r.b[k] = a.b[k] + (b.b[k] - a.b[k]) * t;
-            }
-            r.p[axis] = c;
-            out[m++] = r;
-        }
-    }
-    return m;
-}
-
 /// sRGB <-> 8-bit without pow, bit-identical to rk_svo_pack_color / rk_svo_unpack_color: decoding
 /// is a 256-entry table of rk_srgb_decode; encoding counts the thresholds (the smallest float that
 /// rk_svo_pack_unorm8(rk_srgb_encode(x)) maps to code k, found once by bisection on float bits;
@@ -645,144 +621,204 @@ inline uint64_t estimate_svo_memory(const SvoMesh& mesh, const SvoBuildOptions& 
 
 namespace svo_detail {
 
-/// Evaluates one (voxel, triangle) contribution: clips the triangle to the voxel, integrates the
-/// base colour over the clipped polygon (per fan triangle when textured) and adds colour, normal
-/// and material to the accumulator. `tv` = vertices in voxel units relative to the chunk origin,
-/// (vx, vy, vz) = the voxel relative to the chunk origin.
-inline void contribute(const Prepared& P, const Tri& tri, const double tv[3][3], int vx, int vy, int vz, Accum& acc)
+/// 2D clip of a convex polygon (u, v) to the half-plane a u + b v + c >= 0.
+inline int clip2(const float (*in)[2], int n, float (*out)[2], float a, float b, float c)
 {
-    PVert a[12], b[12];
-    int n = 3;
-    const int lo[3] = {vx, vy, vz};
-    for (int k = 0; k < 3; ++k) {
-        for (int c = 0; c < 3; ++c) a[k].p[c] = static_cast<float>(tv[k][c] - static_cast<double>(lo[c]));
-        a[k].b[0] = k == 0 ? 1.0f : 0.0f;
-        a[k].b[1] = k == 1 ? 1.0f : 0.0f;
-        a[k].b[2] = k == 2 ? 1.0f : 0.0f;
-    }
-    PVert* in = a;
-    PVert* out = b;
-    for (int axis = 0; axis < 3 && n > 0; ++axis) {
-        float mn = in[0].p[axis], mx = mn;
-        for (int k = 1; k < n; ++k) { mn = std::min(mn, in[k].p[axis]); mx = std::max(mx, in[k].p[axis]); }
-        if (mn < 0.0f) { n = clip_poly(in, n, out, axis, 0.0f, -1.0f); std::swap(in, out); }
-        if (n > 0 && mx > 1.0f) { n = clip_poly(in, n, out, axis, 1.0f, 1.0f); std::swap(in, out); }
-    }
-    const int mat = tri.material;
-    const int texi = P.material_texture[static_cast<size_t>(mat)];
-    const Texture* tex = texi >= 0 ? &P.textures[static_cast<size_t>(texi)] : nullptr;
-    const SvoMesh& m = *P.mesh;
-    const glm::vec4 factor = P.materials[static_cast<size_t>(mat)].base_color;
-    // Fan areas and the polygon's area-weighted barycentric centroid.
-    float total = 0.0f;
-    float cb[3] = {0.0f, 0.0f, 0.0f};
-    glm::vec4 csum(0.0f);
-    glm::dvec2 uv[3];
-    double texel_per_area = 0.0;
-    if (tex) {
-        const size_t ustride = m.uv_stride ? m.uv_stride : 2 * sizeof(float);
-        for (int k = 0; k < 3; ++k) uv[k] = glm::dvec2(P.vertex_attr2(m.uvs, ustride, P.index(tri.src, k)));
-        // Texels per unit of 3D area (constant over the triangle): the footprint of a fan piece.
-        const glm::dvec3 e1(tv[1][0] - tv[0][0], tv[1][1] - tv[0][1], tv[1][2] - tv[0][2]);
-        const glm::dvec3 e2(tv[2][0] - tv[0][0], tv[2][1] - tv[0][1], tv[2][2] - tv[0][2]);
-        const double a2 = glm::length(glm::cross(e1, e2));
-        const glm::dvec2 d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
-        if (a2 > 0.0 && !tex->levels.empty())
-            texel_per_area = std::fabs(d1.x * d2.y - d1.y * d2.x) * tex->levels[0].w * tex->levels[0].h / a2;
-    }
-    for (int k = 1; k + 1 < n; ++k) {
-        const glm::vec3 p0(in[0].p[0], in[0].p[1], in[0].p[2]), p1(in[k].p[0], in[k].p[1], in[k].p[2]),
-            p2(in[k + 1].p[0], in[k + 1].p[1], in[k + 1].p[2]);
-        const float ar = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
-        if (!(ar > 0.0f)) continue;
-        float bc[3];
-        for (int c = 0; c < 3; ++c) {
-            bc[c] = (in[0].b[c] + in[k].b[c] + in[k + 1].b[c]) * (1.0f / 3.0f);
-            cb[c] += bc[c] * ar;
-        }
-        if (tex) {
-            // The fan piece is split into 4^s congruent sub-triangles (midpoint subdivision) until each
-            // spans at most ~1 texel (s <= 4), and each is sampled at its centroid with the mip level
-            // of its footprint: an area average that stays inside the polygon (no bleeding across
-            // borders, as one coarse mip sample would). Texel extent of a triangle of area A ~ sqrt(2A).
-            const double foot = std::sqrt(std::max(0.0, 2.0 * static_cast<double>(ar) * texel_per_area));
-            const int sub = foot > 1.0 ? std::min(4, static_cast<int>(std::ceil(std::log2(foot)))) : 0;
-            const int g = 1 << sub;  // sub-triangles per edge: g^2 of them
-            const double sub_foot = foot / g;
-            glm::dvec2 t0 = glm::dvec2(0.0), t1 = glm::dvec2(0.0), t2 = glm::dvec2(0.0);
-            for (int c = 0; c < 3; ++c) {
-                t0 += uv[c] * static_cast<double>(in[0].b[c]);
-                t1 += uv[c] * static_cast<double>(in[k].b[c]);
-                t2 += uv[c] * static_cast<double>(in[k + 1].b[c]);
-            }
-            const glm::dvec2 du = (t1 - t0) / static_cast<double>(g), dv = (t2 - t0) / static_cast<double>(g);
-            glm::vec4 acc_s(0.0f);
-            for (int i = 0; i < g; ++i)
-                for (int j = 0; i + j < g; ++j) {
-                    // Upright sub-triangle (i, j) and, when it exists, the inverted one beside it.
-                    const glm::dvec2 up = t0 + du * (i + 1.0 / 3.0) + dv * (j + 1.0 / 3.0);
-                    acc_s += tex->sample(up.x, up.y, sub_foot);
-                    if (i + j + 1 < g) {
-                        const glm::dvec2 dn = t0 + du * (i + 2.0 / 3.0) + dv * (j + 2.0 / 3.0);
-                        acc_s += tex->sample(dn.x, dn.y, sub_foot);
-                    }
-                }
-            csum += acc_s * (ar / static_cast<float>(g * g));
-        }
-        total += ar;
-    }
-    const bool touch = !(total > 0.0f);
-    if (touch) {
-        // Touching only (an edge or a corner on the box): one sample at the touching points' mean.
-        cb[0] = cb[1] = cb[2] = 0.0f;
-        for (int k = 0; k < n; ++k)
-            for (int c = 0; c < 3; ++c) cb[c] += in[k].b[c] / static_cast<float>(n);
-        if (n == 0) cb[0] = cb[1] = cb[2] = 1.0f / 3.0f;
-    } else {
-        for (int c = 0; c < 3; ++c) cb[c] /= total;
-    }
-    glm::vec4 col = factor;
-    if (tex) {
-        if (touch) {
-            const glm::dvec2 u = uv[0] * static_cast<double>(cb[0]) + uv[1] * static_cast<double>(cb[1]) + uv[2] * static_cast<double>(cb[2]);
-            col *= tex->sample(u.x, u.y, 0.0);
-        } else {
-            col *= csum / total;
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+        const float* p = in[i];
+        const float* q = in[i + 1 < n ? i + 1 : 0];
+        const float dp = a * p[0] + b * p[1] + c, dq = a * q[0] + b * q[1] + c;
+        if (dp >= 0.0f) { out[m][0] = p[0]; out[m][1] = p[1]; ++m; }
+        if ((dp > 0.0f && dq < 0.0f) || (dp < 0.0f && dq > 0.0f)) {
+            const float t = dp / (dp - dq);
+            out[m][0] = p[0] + (q[0] - p[0]) * t;
+            out[m][1] = p[1] + (q[1] - p[1]) * t;
+            ++m;
         }
     }
-    // Normal at the polygon's centroid: interpolated vertex normals are linear in the barycentrics,
-    // so this is their area-weighted mean over the polygon (normalised once).
-    glm::vec3 nrm;
-    if (P.has_normals) {
-        const size_t nstride = m.normal_stride ? m.normal_stride : 3 * sizeof(float);
-        nrm = P.vertex_attr3(m.normals, nstride, P.index(tri.src, 0)) * cb[0] +
-              P.vertex_attr3(m.normals, nstride, P.index(tri.src, 1)) * cb[1] +
-              P.vertex_attr3(m.normals, nstride, P.index(tri.src, 2)) * cb[2];
-    } else {
-        nrm = glm::vec3(0.0f);
-    }
-    const float nl = glm::length(nrm);
-    if (!(nl > 1e-30f) || !std::isfinite(nl)) {
-        nrm = glm::vec3(glm::cross(glm::dvec3(tv[1][0] - tv[0][0], tv[1][1] - tv[0][1], tv[1][2] - tv[0][2]),
-                                   glm::dvec3(tv[2][0] - tv[0][0], tv[2][1] - tv[0][1], tv[2][2] - tv[0][2])));
-        const float fl = glm::length(nrm);
-        nrm = fl > 0.0f && std::isfinite(fl) ? nrm / fl : glm::vec3(0.0f, 0.0f, 1.0f);
-    } else {
-        nrm /= nl;
-    }
-    if (!touch) {
-        acc.area += total;
-        acc.col += col * total;
-        acc.nrm += nrm * total;
-        if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri.material; }
-    } else {
-        acc.touch += 1.0f;
-        acc.tcol += col;
-        acc.tnrm += nrm;
-        if (acc.best_area <= 0.0f && !acc.used) acc.best_mat = tri.material;
-    }
-    acc.used = 1;
+    return m;
 }
+
+/// One triangle's attribute evaluation, set up once per (chunk, triangle). The part of the
+/// triangle inside a voxel is clipped in the projection onto the plane of the two non-dominant
+/// axes: the triangle is clipped to the voxel's column square once per column, then to the strip
+/// where the triangle's plane lies within the voxel's extent along the dominant axis; areas scale
+/// by |n| / |n_w| back to 3D, barycentrics are an affine function of the projected position.
+struct TriFrame {
+    const Prepared* P = nullptr;
+    const Tri* tri = nullptr;
+    int u = 0, v = 1, w = 2;
+    double pu[3], pv[3];   // projected vertices, chunk-relative voxel units
+    double pa = 0, pb = 0, pc = 0;  // plane: w = pa u + pb v + pc
+    double scale = 1;      // 3D area / projected area
+    double bu[3], bv[3], bc[3];  // barycentric k = bc[k] + bu[k] u + bv[k] v
+    glm::vec3 face{0.0f, 0.0f, 1.0f};
+    glm::vec3 vn[3];
+    bool has_vn = false;
+    const Texture* tex = nullptr;
+    glm::dvec2 uv[3];
+    double texel_per_area = 0;  // texels per unit of 3D area (voxel units)
+    glm::vec4 factor{1.0f};
+    int64_t col_u = INT64_MIN, col_v = INT64_MIN;
+    float sq[8][2];
+    int nsq = 0;
+
+    bool setup(const Prepared& prep, const Tri& t, const double tv[3][3])
+    {
+        P = &prep;
+        tri = &t;
+        col_u = col_v = INT64_MIN;
+        const glm::dvec3 p0(tv[0][0], tv[0][1], tv[0][2]), p1(tv[1][0], tv[1][1], tv[1][2]), p2(tv[2][0], tv[2][1], tv[2][2]);
+        const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+        w = 0;
+        for (int k = 1; k < 3; ++k)
+            if (std::fabs(n[k]) > std::fabs(n[w])) w = k;
+        u = (w + 1) % 3;
+        v = (w + 2) % 3;
+        if (!(std::fabs(n[w]) > 0.0)) return false;
+        for (int k = 0; k < 3; ++k) { pu[k] = tv[k][u]; pv[k] = tv[k][v]; }
+        pa = -n[u] / n[w];
+        pb = -n[v] / n[w];
+        pc = tv[0][w] - pa * pu[0] - pb * pv[0];
+        const double nl = glm::length(n);
+        scale = nl / std::fabs(n[w]);
+        face = glm::vec3(n / nl);
+        const double det = (pu[1] - pu[0]) * (pv[2] - pv[0]) - (pu[2] - pu[0]) * (pv[1] - pv[0]);
+        // b1 = ((u - u0)(v2 - v0) - (u2 - u0)(v - v0)) / det, b2 = ((u1 - u0)(v - v0) - (u - u0)(v1 - v0)) / det.
+        bu[1] = (pv[2] - pv[0]) / det;
+        bv[1] = -(pu[2] - pu[0]) / det;
+        bc[1] = -(pu[0] * bu[1] + pv[0] * bv[1]);
+        bu[2] = -(pv[1] - pv[0]) / det;
+        bv[2] = (pu[1] - pu[0]) / det;
+        bc[2] = -(pu[0] * bu[2] + pv[0] * bv[2]);
+        bu[0] = -bu[1] - bu[2];
+        bv[0] = -bv[1] - bv[2];
+        bc[0] = 1.0 - bc[1] - bc[2];
+        const SvoMesh& m = *P->mesh;
+        const int mat = t.material;
+        factor = P->materials[static_cast<size_t>(mat)].base_color;
+        has_vn = P->has_normals;
+        if (has_vn) {
+            const size_t nstride = m.normal_stride ? m.normal_stride : 3 * sizeof(float);
+            for (int k = 0; k < 3; ++k) vn[k] = P->vertex_attr3(m.normals, nstride, P->index(t.src, k));
+        }
+        const int texi = P->material_texture[static_cast<size_t>(mat)];
+        tex = texi >= 0 && !P->textures[static_cast<size_t>(texi)].levels.empty() ? &P->textures[static_cast<size_t>(texi)] : nullptr;
+        texel_per_area = 0;
+        if (tex) {
+            const size_t ustride = m.uv_stride ? m.uv_stride : 2 * sizeof(float);
+            for (int k = 0; k < 3; ++k) uv[k] = glm::dvec2(P->vertex_attr2(m.uvs, ustride, P->index(t.src, k)));
+            const glm::dvec2 d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
+            texel_per_area = std::fabs(d1.x * d2.y - d1.y * d2.x) * tex->levels[0].w * tex->levels[0].h / nl;
+        }
+        return true;
+    }
+
+    glm::dvec2 uv_at(double gu, double gv) const
+    {
+        glm::dvec2 r(0.0);
+        for (int k = 0; k < 3; ++k) r += uv[k] * (bc[k] + bu[k] * gu + bv[k] * gv);
+        return r;
+    }
+
+    /// Adds the contribution to voxel `cell` (chunk-local integer coordinates).
+    void contribute(const int cell[3], Accum& acc)
+    {
+        const int cu = cell[u], cv = cell[v], cw = cell[w];
+        if (cu != col_u || cv != col_v) {
+            col_u = cu;
+            col_v = cv;
+            float tri2[3][2], b1[8][2], b2[8][2];
+            for (int k = 0; k < 3; ++k) {
+                tri2[k][0] = static_cast<float>(pu[k] - cu);
+                tri2[k][1] = static_cast<float>(pv[k] - cv);
+            }
+            int n = clip2(tri2, 3, b1, 1.0f, 0.0f, 0.0f);
+            n = clip2(b1, n, b2, -1.0f, 0.0f, 1.0f);
+            n = clip2(b2, n, b1, 0.0f, 1.0f, 0.0f);
+            n = clip2(b1, n, sq, 0.0f, -1.0f, 1.0f);
+            nsq = n;
+        }
+        // Strip 0 <= pa u' + pb v' + c0 <= 1 in column-local coordinates.
+        const float a = static_cast<float>(pa), b = static_cast<float>(pb);
+        const float c0 = static_cast<float>(pa * cu + pb * cv + pc - cw);
+        float s1[10][2], poly[12][2];
+        int n = clip2(sq, nsq, s1, a, b, c0);
+        n = clip2(s1, n, poly, -a, -b, 1.0f - c0);
+        // Fan: projected areas, centroid.
+        double area2 = 0.0, cx = 0.0, cy = 0.0;
+        glm::vec4 csum(0.0f);
+        for (int k = 1; k + 1 < n; ++k) {
+            const float ar = 0.5f * std::fabs((poly[k][0] - poly[0][0]) * (poly[k + 1][1] - poly[0][1]) -
+                                              (poly[k + 1][0] - poly[0][0]) * (poly[k][1] - poly[0][1]));
+            if (!(ar > 0.0f)) continue;
+            const double gx = (poly[0][0] + poly[k][0] + poly[k + 1][0]) / 3.0, gy = (poly[0][1] + poly[k][1] + poly[k + 1][1]) / 3.0;
+            cx += gx * ar;
+            cy += gy * ar;
+            area2 += ar;
+            if (tex) {
+                // Split the piece into 4^s congruent sub-triangles until each spans about a texel
+                // (s <= 4), sampling each at its centroid with the mip level of its footprint: an
+                // area average that stays inside the polygon. Texel extent of a triangle of area A ~ sqrt(2A).
+                const double ar3 = ar * scale;
+                const double foot = std::sqrt(std::max(0.0, 2.0 * ar3 * texel_per_area));
+                const int sub = foot > 1.0 ? std::min(4, static_cast<int>(std::ceil(std::log2(foot)))) : 0;
+                const int g = 1 << sub;
+                const double sub_foot = foot / g;
+                const glm::dvec2 t0 = uv_at(cu + static_cast<double>(poly[0][0]), cv + static_cast<double>(poly[0][1]));
+                const glm::dvec2 du = (uv_at(cu + static_cast<double>(poly[k][0]), cv + static_cast<double>(poly[k][1])) - t0) / static_cast<double>(g);
+                const glm::dvec2 dv = (uv_at(cu + static_cast<double>(poly[k + 1][0]), cv + static_cast<double>(poly[k + 1][1])) - t0) / static_cast<double>(g);
+                glm::vec4 acc_s(0.0f);
+                for (int i = 0; i < g; ++i)
+                    for (int j = 0; i + j < g; ++j) {
+                        const glm::dvec2 up = t0 + du * (i + 1.0 / 3.0) + dv * (j + 1.0 / 3.0);
+                        acc_s += tex->sample(up.x, up.y, sub_foot);
+                        if (i + j + 1 < g) {
+                            const glm::dvec2 dn = t0 + du * (i + 2.0 / 3.0) + dv * (j + 2.0 / 3.0);
+                            acc_s += tex->sample(dn.x, dn.y, sub_foot);
+                        }
+                    }
+                csum += acc_s * (ar / static_cast<float>(g * g));
+            }
+        }
+        const bool touch = !(area2 > 0.0);
+        if (touch) {
+            // Touching only (an edge or a corner on the box): one sample at the touching points' mean.
+            cx = cy = 0.0;
+            for (int k = 0; k < n; ++k) { cx += poly[k][0]; cy += poly[k][1]; }
+            if (n > 0) { cx /= n; cy /= n; }
+        } else {
+            cx /= area2;
+            cy /= area2;
+        }
+        const double gu = cu + cx, gv = cv + cy;
+        glm::vec4 col = factor;
+        if (tex) col *= touch ? tex->sample(uv_at(gu, gv).x, uv_at(gu, gv).y, 0.0) : csum / static_cast<float>(area2);
+        // Normal at the polygon's centroid: interpolated normals are linear in the barycentrics, so
+        // this is their area-weighted mean over the polygon (normalised once).
+        glm::vec3 nrm = face;
+        if (has_vn) {
+            glm::vec3 s(0.0f);
+            for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
+            const float l = glm::length(s);
+            if (l > 1e-30f && std::isfinite(l)) nrm = s / l;
+        }
+        const float total = static_cast<float>(area2 * scale);
+        if (!touch) {
+            acc.area += total;
+            acc.col += col * total;
+            acc.nrm += nrm * total;
+            if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; }
+        } else {
+            acc.touch += 1.0f;
+            acc.tcol += col;
+            acc.tnrm += nrm;
+            if (acc.best_area <= 0.0f && !acc.used) acc.best_mat = tri->material;
+        }
+        acc.used = 1;
+    }
+};
 
 /// Voxelises the triangles of one chunk (cells [org, org + 2^cs)^3) into sorted leaves.
 struct ChunkWork {
@@ -910,16 +946,23 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
         double tv[3][3];  // voxel units relative to the chunk origin
         for (int k = 0; k < 3; ++k)
             for (int a = 0; a < 3; ++a) tv[k][a] = static_cast<double>(tri.v[k][a]) * inv_s - static_cast<double>(lo[a]);
+        TriFrame F;
+        const bool frame = attrs && F.setup(P, tri, tv);
         for_each_overlap(tri.v, kSvoSubvoxelBits, lo, hi, [&](const int64_t c[3]) {
-            const uint32_t li = static_cast<uint32_t>(morton(static_cast<uint32_t>(c[0] - lo[0]), static_cast<uint32_t>(c[1] - lo[1]),
-                                                             static_cast<uint32_t>(c[2] - lo[2])));
+            const int cell[3] = {static_cast<int>(c[0] - lo[0]), static_cast<int>(c[1] - lo[1]), static_cast<int>(c[2] - lo[2])};
+            const uint32_t li = static_cast<uint32_t>(morton(static_cast<uint32_t>(cell[0]), static_cast<uint32_t>(cell[1]),
+                                                             static_cast<uint32_t>(cell[2])));
             Accum& A = W.acc[li];
             W.touched[li >> 6] |= uint64_t(1) << (li & 63u);
-            if (attrs) {
-                contribute(P, tri, tv, static_cast<int>(c[0] - lo[0]), static_cast<int>(c[1] - lo[1]), static_cast<int>(c[2] - lo[2]), A);
+            if (frame) {
+                F.contribute(cell, A);
             } else {
+                // No attributes (or a triangle too thin for the double-precision frame): occupancy
+                // only, with the material's colour as a touch sample.
+                if (attrs) A.tcol += P.materials[tri.material].base_color;
+                if (attrs && !A.used) A.best_mat = tri.material;
                 A.used = 1;
-                A.touch = 1.0f;
+                A.touch += 1.0f;
             }
         });
     }

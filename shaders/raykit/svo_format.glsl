@@ -65,7 +65,11 @@
 #define RK_SVO_BUF uint
 #ifndef RK_SVO_LOAD
 #if RK_SVO_BUFFER_TEXTURE
+#ifdef GL_ES
 layout(binding = RK_SVO_WORDS_BINDING) uniform highp usampler2D rk_svo_words_tex;
+#else
+layout(binding = RK_SVO_WORDS_BINDING) uniform usampler2D rk_svo_words_tex;
+#endif
 #define RK_SVO_LOAD(i) texelFetch(rk_svo_words_tex, ivec2(int((i) % RK_SVO_TEXTURE_WIDTH), int((i) / RK_SVO_TEXTURE_WIDTH)), 0).x
 #else
 layout(std430, binding = RK_SVO_WORDS_BINDING) readonly buffer RkSvoWords { uint rk_svo_words[]; };

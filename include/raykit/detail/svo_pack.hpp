@@ -75,7 +75,7 @@ inline void put_leaf_attr(SvoTree& t, uint64_t i, const Leaf& l)
 }
 
 /// Packs Morton-sorted, unique leaves (keys at `depth`) into `t`.
-inline bool pack(const std::vector<Leaf>& leaves, uint32_t depth, uint32_t attributes, uint32_t pointer_bits,
+inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, uint32_t depth, uint32_t attributes, uint32_t pointer_bits,
                  const std::vector<SvoMaterial>& materials, SvoTree& t, Memory& mem, SvoStatus& st)
 {
     const uint32_t b = rk_svo_brick_levels(depth);
@@ -230,43 +230,45 @@ inline bool pack(const std::vector<Leaf>& leaves, uint32_t depth, uint32_t attri
     if (attributes & RK_SVO_ATTR_COLOR) t.color.assign(attr, 0u);
     if (attributes & RK_SVO_ATTR_NORMAL) t.normal.assign(attr, 0u);
     if (attributes & RK_SVO_ATTR_MATERIAL) { t.material.assign(attr, 0u); t.materials = materials; }
-    // Attributes, bottom-up: voxels, sub-nodes and the brick itself, then each descriptor level.
+    // Attributes, bottom-up: voxels, sub-nodes and the brick itself (in parallel over blocks of
+    // bricks), then each descriptor level.
     std::vector<Sum> child(nb), parent;
-    for (uint64_t j = 0; j < nb; ++j) {
-        const glm::uvec2 m(t.words[desc_words + 2 * j], t.words[desc_words + 2 * j + 1]);
-        const uint64_t base = t.brick_base[j];
-        const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(m))) : 0u;
-        // Sums of the brick's level-(depth-1) nodes (b = 2; each the sum of up to 8 voxels, material
-        // by area vote of its voxels) or of its voxels (b = 1), then the brick.
-        Sum parts[8];
-        uint32_t np = 0;
-        for (uint64_t i = brick_first[j]; i < brick_first[j + 1];) {
-            const uint64_t part = b == 2 ? (leaves[i].key >> 3) : leaves[i].key;
-            Sum vox[8];
-            uint32_t nv = 0;
-            for (; i < brick_first[j + 1] && (b == 2 ? (leaves[i].key >> 3) : leaves[i].key) == part; ++i) {
-                put_leaf_attr(t, base + subs + (i - brick_first[j]), leaves[i]);
-                vox[nv].add_leaf(leaves[i]);
-                ++nv;
+    const uint64_t block = 4096;
+    parallel_for(opt, static_cast<size_t>((nb + block - 1) / block), [&](size_t blk) {
+        const uint64_t j_end = std::min<uint64_t>(nb, (blk + 1) * block);
+        for (uint64_t j = blk * block; j < j_end; ++j) {
+            const glm::uvec2 m(t.words[desc_words + 2 * j], t.words[desc_words + 2 * j + 1]);
+            const uint64_t base = t.brick_base[j];
+            const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(m))) : 0u;
+            // Sums of the brick's level-(depth-1) nodes (b = 2; each over up to 8 voxels) or of its
+            // voxels (b = 1), then the brick.
+            Sum brick;
+            uint32_t np = 0;
+            for (uint64_t i = brick_first[j]; i < brick_first[j + 1];) {
+                const uint64_t part = b == 2 ? (leaves[i].key >> 3) : leaves[i].key;
+                Sum p;
+                for (; i < brick_first[j + 1] && (b == 2 ? (leaves[i].key >> 3) : leaves[i].key) == part; ++i) {
+                    put_leaf_attr(t, base + subs + (i - brick_first[j]), leaves[i]);
+                    p.add_leaf(leaves[i]);
+                }
+                if (b == 2) put_attr(t, base + np, p);
+                ++np;
+                brick.add(p);
             }
-            Sum& p = parts[np++];
-            for (uint32_t k = 0; k < nv; ++k) p.add(vox[k]);
+            put_attr(t, desc_words + j, brick);
+            child[j] = brick;
         }
-        Sum brick;
-        for (uint32_t k = 0; k < np; ++k) {
-            if (b == 2) put_attr(t, base + k, parts[k]);
-            brick.add(parts[k]);
-        }
-        put_attr(t, desc_words + j, brick);
-        child[j] = brick;
-    }
+    });
     for (uint32_t L = top; L-- > 0;) {
         parent.assign(lv[L].key.size(), Sum{});
-        for (size_t i = 0; i < parent.size(); ++i) {
-            const uint32_t cnt = static_cast<uint32_t>(bitCount(static_cast<uint32_t>(lv[L].mask[i])));
-            for (uint32_t c = 0; c < cnt; ++c) parent[i].add(child[lv[L].first[i] + c]);
-            put_attr(t, pos[L][i], parent[i]);
-        }
+        parallel_for(opt, (parent.size() + block - 1) / block, [&](size_t blk) {
+            const size_t i_end = std::min<size_t>(parent.size(), (blk + 1) * block);
+            for (size_t i = blk * block; i < i_end; ++i) {
+                const uint32_t cnt = static_cast<uint32_t>(bitCount(static_cast<uint32_t>(lv[L].mask[i])));
+                for (uint32_t c = 0; c < cnt; ++c) parent[i].add(child[lv[L].first[i] + c]);
+                put_attr(t, pos[L][i], parent[i]);
+            }
+        });
         child.swap(parent);
     }
     return true;
@@ -429,7 +431,7 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
     // Pack.
     const Clock::time_point tp0 = Clock::now();
     if (!report(0.9f, "packing")) return finish(st.fail(SvoError::cancelled, "cancelled"));
-    if (!pack(leaves, P.depth, opt.attributes, opt.pointer_bits, P.materials, out, mem, st)) return finish(false);
+    if (!pack(opt, leaves, P.depth, opt.attributes, opt.pointer_bits, P.materials, out, mem, st)) return finish(false);
     out.root_min = glm::vec3(P.root_min[0], P.root_min[1], P.root_min[2]);
     out.root_size = P.root_size;
     stats.seconds_pack = seconds_since(tp0);
