@@ -561,16 +561,21 @@ inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P
     return true;
 }
 
-/// Bytes per leaf voxel the builder holds at its peak: the Morton-sorted leaves and the chunk
-/// outputs being gathered into them, the attribute streams (4 bytes per stream per node, 1.34
+/// Bytes per leaf voxel the builder holds at its peak: the Morton-sorted leaves (plus the batch
+/// of chunk outputs being appended), the attribute streams (4 bytes per stream per node, 1.34
 /// nodes per voxel on surfaces), the bricks' attribute sums (~80 bytes per 12 voxels) and the
 /// structure.
 inline double peak_bytes_per_voxel(uint32_t attributes)
 {
-    return 2.0 * sizeof(Leaf) + 4.0 * 1.34 * static_cast<double>(bitCount(attributes)) + 7.0 + 1.5;
+    return 1.1 * sizeof(Leaf) + 4.0 * 1.34 * static_cast<double>(bitCount(attributes)) + 8.0 + 1.5;
 }
 
-inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
+/// An upper estimate of the leaf voxels: per triangle, sqrt(3) x its area in voxels (a plane
+/// through a grid touches at most that many cells per unit area) plus rims along its perimeter;
+/// solid fill adds the mesh's bounding volume.
+inline double estimate_voxels(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh);
+
+inline double estimate_voxels(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
 {
     const size_t pstride = mesh.position_stride ? mesh.position_stride : 3 * sizeof(float);
     const double vox = static_cast<double>(P.root_size) / std::ldexp(1.0, static_cast<int>(P.depth));
@@ -589,9 +594,9 @@ inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const Sv
         if (!ok) continue;
         const double area = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
         const double perim = glm::length(p[1] - p[0]) + glm::length(p[2] - p[1]) + glm::length(p[0] - p[2]);
-        // A plane through a grid touches at most sqrt(3) * area cells (plus the rims); closed boxes
-        // add a ring of touched neighbours along the perimeter.
-        voxels += std::sqrt(3.0) * area + 3.0 * perim + 27.0;
+        // sqrt(3) x area: the most cells a plane crosses per unit area; closed boxes add the
+        // neighbours touched along the edges (shared by two triangles) and at the corners.
+        voxels += std::sqrt(3.0) * area + 1.5 * perim + 8.0;
         for (int k = 0; k < 3; ++k) { lo = glm::min(lo, p[k]); hi = glm::max(hi, p[k]); }
     }
     const double cells = std::ldexp(1.0, 3 * static_cast<int>(P.depth));
@@ -599,7 +604,13 @@ inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const Sv
         const glm::dvec3 e = glm::max(hi - lo + 2.0, glm::dvec3(1.0));
         voxels += e.x * e.y * e.z;
     }
-    voxels = std::min(voxels, cells);
+    return std::min(voxels, cells);
+}
+
+inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
+{
+    const size_t n = mesh.triangle_count;
+    const double voxels = estimate_voxels(P, opt, mesh);
     double bytes = voxels * peak_bytes_per_voxel(opt.attributes);
     bytes += static_cast<double>(2 * n) * (sizeof(Tri) + 16.0);  // triangles + chunk bins
     const unsigned t = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : std::max(1u, std::thread::hardware_concurrency());

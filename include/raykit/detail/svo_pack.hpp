@@ -361,54 +361,62 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
     const size_t nchunks = chunk_start.size() - 1;
     std::vector<uint32_t> tri_ids(pairs.size());
     for (size_t i = 0; i < pairs.size(); ++i) tri_ids[i] = pairs[i].second;
-    // Voxelise every chunk in parallel; chunk outputs concatenated in chunk Morton order are the
-    // leaves in Morton order.
-    std::vector<std::vector<Leaf>> chunk_out(nchunks);
+    // Voxelise the chunks in parallel, in batches; each batch's outputs are appended in chunk
+    // Morton order (= voxel Morton order) and freed, so the leaves are held once, not twice.
+    std::vector<Leaf> leaves;
+    leaves.reserve(static_cast<size_t>(std::min<double>(estimate_voxels(P, opt, mesh), 1e10)));  // untouched pages cost nothing
     std::vector<std::unique_ptr<ChunkWork>> work_pool;
+    size_t work_created = 0;
     std::mutex pool_mutex;
     std::atomic<size_t> done{0};
-    std::atomic<uint64_t> leaf_total{0};
     std::atomic<bool> over_budget{false};
-    parallel_for(opt, nchunks, [&](size_t c) {
-        if (cancelled || over_budget) return;
-        std::unique_ptr<ChunkWork> W;
-        {
-            std::lock_guard<std::mutex> lock(pool_mutex);
-            if (!work_pool.empty()) { W = std::move(work_pool.back()); work_pool.pop_back(); }
+    const size_t batch = 8192;
+    std::vector<std::vector<Leaf>> chunk_out;
+    for (size_t b0 = 0; b0 < nchunks && !cancelled && !over_budget; b0 += batch) {
+        const size_t nb_chunks = std::min(batch, nchunks - b0);
+        chunk_out.assign(nb_chunks, std::vector<Leaf>());
+        std::atomic<uint64_t> batch_leaves{0};
+        parallel_for(opt, nb_chunks, [&](size_t ci) {
+            if (cancelled || over_budget) return;
+            const size_t c = b0 + ci;
+            std::unique_ptr<ChunkWork> W;
+            {
+                std::lock_guard<std::mutex> lock(pool_mutex);
+                if (!work_pool.empty()) { W = std::move(work_pool.back()); work_pool.pop_back(); }
+                else ++work_created;
+            }
+            if (!W) W.reset(new ChunkWork);
+            const uint64_t key = pairs[chunk_start[c]].first;
+            uint32_t org[3] = {0, 0, 0};
+            for (uint32_t l = 0; l < chunk_level; ++l)
+                for (int a = 0; a < 3; ++a) org[a] |= static_cast<uint32_t>((key >> (3 * l + static_cast<uint32_t>(a))) & 1u) << l;
+            for (int a = 0; a < 3; ++a) org[a] <<= cs;
+            voxelize_chunk(P, tri_ids.data() + chunk_start[c], chunk_start[c + 1] - chunk_start[c], org, cs, *W, chunk_out[ci]);
+            const uint64_t tot = (batch_leaves += chunk_out[ci].size()) + leaves.size();
+            if (opt.memory_budget && mem.live + tot * sizeof(Leaf) > opt.memory_budget) over_budget = true;
+            {
+                std::lock_guard<std::mutex> lock(pool_mutex);
+                work_pool.push_back(std::move(W));
+            }
+            const size_t d = ++done;
+            if ((d & 63u) == 0 || d == nchunks) report(0.05f + 0.75f * static_cast<float>(d) / static_cast<float>(nchunks), "voxelizing");
+        });
+        const uint64_t pool_bytes = work_created * (uint64_t(1) << (3 * cs)) * sizeof(Accum);
+        // Peak of this batch: the leaves so far, the batch's outputs and the chunk accumulators.
+        if (!mem.add(pool_bytes + (leaves.size() + batch_leaves) * sizeof(Leaf), st, "voxelizing")) return finish(false);
+        for (std::vector<Leaf>& v : chunk_out) {
+            leaves.insert(leaves.end(), v.begin(), v.end());
+            std::vector<Leaf>().swap(v);
         }
-        if (!W) W.reset(new ChunkWork);
-        const uint64_t key = pairs[chunk_start[c]].first;
-        uint32_t org[3] = {0, 0, 0};
-        for (uint32_t l = 0; l < chunk_level; ++l)
-            for (int a = 0; a < 3; ++a) org[a] |= static_cast<uint32_t>((key >> (3 * l + static_cast<uint32_t>(a))) & 1u) << l;
-        for (int a = 0; a < 3; ++a) org[a] <<= cs;
-        voxelize_chunk(P, tri_ids.data() + chunk_start[c], chunk_start[c + 1] - chunk_start[c], org, cs, *W, chunk_out[c]);
-        const uint64_t tot = (leaf_total += chunk_out[c].size());
-        if (opt.memory_budget && tot * sizeof(Leaf) * 2 > opt.memory_budget) over_budget = true;
-        {
-            std::lock_guard<std::mutex> lock(pool_mutex);
-            work_pool.push_back(std::move(W));
-        }
-        const size_t d = ++done;
-        if ((d & 63u) == 0 || d == nchunks) report(0.05f + 0.75f * static_cast<float>(d) / static_cast<float>(nchunks), "voxelizing");
-    });
-    const uint64_t pool_bytes = work_pool.size() * (size_t(1) << (3 * cs)) * sizeof(Accum);
+        mem.sub(pool_bytes + (leaves.size() - batch_leaves + batch_leaves) * sizeof(Leaf));
+    }
     work_pool.clear();
     if (cancelled) return finish(st.fail(SvoError::cancelled, "cancelled while voxelizing"));
-    if (!mem.add(pool_bytes + leaf_total * sizeof(Leaf), st, "voxelizing")) return finish(false);
-    mem.sub(pool_bytes);
     if (over_budget) return finish(st.fail(SvoError::budget_exceeded, "memory budget exceeded while voxelizing"));
     std::vector<std::pair<uint64_t, uint32_t>>().swap(pairs);
     std::vector<uint32_t>().swap(tri_ids);
     mem.sub(nbinned * (sizeof(std::pair<uint64_t, uint32_t>) + 8));
-    std::vector<Leaf> leaves;
-    if (!mem.add(leaf_total * sizeof(Leaf), st, "collecting voxels")) return finish(false);
-    leaves.reserve(leaf_total);
-    for (std::vector<Leaf>& v : chunk_out) {
-        leaves.insert(leaves.end(), v.begin(), v.end());
-        std::vector<Leaf>().swap(v);
-    }
-    mem.sub(leaf_total * sizeof(Leaf));
+    if (!mem.add(leaves.size() * sizeof(Leaf), st, "collecting voxels")) return finish(false);
     stats.surface_voxels = leaves.size();
     stats.seconds_voxelize = seconds_since(tv0);
     // Solid fill.
