@@ -333,6 +333,8 @@ void register_svo()
     std::vector<MeshCase> meshes;
     meshes.push_back({"icosphere3", "icosphere(3): unit sphere, 1,280 triangles (the thesis's ~1k-triangle case)", 13,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::icosphere(3))});
+    meshes.push_back({"figure", "figure(): a 1.8-unit standing figure, 1,024 triangles (a stand-in for the thesis's 1,027-triangle character)", 13,
+                      std::make_shared<const raykit::SvoMeshData>(rkmesh::figure())});
     meshes.push_back({"menger2", "menger_sponge(2): unit cube, 2,112 triangles, 400 square holes, axis-aligned faces", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::menger_sponge(2))});
     meshes.push_back({"uvsphere256", "uv_sphere(256, 137): unit sphere, 69,632 triangles (the ~70k case)", 11,

@@ -466,7 +466,8 @@ def write_plot(context, suite, img_dir):
 
 SVO_PNG = "bench_svo_build.png"
 SVO_DAT = "bench_svo_build.dat"
-SVO_ONE_K = "icosphere3"      # the ~1k-triangle mesh (thesis: 1,027 triangles)
+SVO_ONE_K = "figure"          # the ~1k-triangle mesh (thesis: a 1,027-triangle character in its bounding cube)
+SVO_ONE_K_DENSE = "icosphere3"  # ~1k triangles filling their cube: about 4x the voxels, the worst case
 SVO_SEVENTY_K = "uvsphere256"  # the ~70k-triangle mesh
 SVO_GOAL_1K_S = 0.5
 SVO_GOAL_70K_S = 3.0
@@ -741,7 +742,8 @@ def svo_goals(data):
                        ">= 10" if deep else "6..%s" % max_depth, "" if deep else " (deeper rows not run)",
                        span(min(alls), max(alls))))
     # 3, 4. Build times on 2 cores at depth 11.
-    for mesh, goal, what in ((SVO_ONE_K, SVO_GOAL_1K_S, "~1k triangles"), (SVO_SEVENTY_K, SVO_GOAL_70K_S, "~70k triangles")):
+    for mesh, goal, what in ((SVO_ONE_K, SVO_GOAL_1K_S, "~1k triangles"), (SVO_ONE_K_DENSE, SVO_GOAL_1K_S, "~1k triangles, sphere filling its cube"),
+                             (SVO_SEVENTY_K, SVO_GOAL_70K_S, "~70k triangles")):
         t = svo_time(data, mesh, 11, 2)
         if t is None:
             out.append("- %s (%s) at depth 11 <= %g s on 2 cores: %s." % (
@@ -752,20 +754,21 @@ def svo_goals(data):
                 what, mesh, goal, verdict(t <= goal), fmt_seconds(t),
                 ", %s with 1" % fmt_seconds(t1) if t1 else "", t / goal))
     # 5. Depth 13 memory.
-    r13 = data.find(SVO_ONE_K, 13, 2) or data.find(SVO_ONE_K, 13, 1)
-    if r13 is not None:
-        peak = svo_measured_peak(r13)
-        out.append("- Depth 13 (%s) within 4 GB: %s — measured peak %s GB (builder %s GB, RSS rise %s GB), estimate %s GB."
-                   % (SVO_ONE_K, verdict(peak is not None and peak <= SVO_GOAL_DEPTH13_BYTES),
-                      "%.2f" % (peak / 1e9) if peak else "—", "%.2f" % (r13.get("peak_bytes") / 1e9),
-                      "%.2f" % (r13.get("rss_peak_bytes") / 1e9), "%.2f" % (r13.get("est_peak_bytes") / 1e9)))
-    else:
-        def peak_gb(d):
-            p = svo_measured_peak(data.find(SVO_ONE_K, d, 2) or data.find(SVO_ONE_K, d, 1))
-            return p / 1e9 if p else None
+    for one_k in (SVO_ONE_K, SVO_ONE_K_DENSE):
+        r13 = data.find(one_k, 13, 2) or data.find(one_k, 13, 1)
+        if r13 is not None:
+            peak = svo_measured_peak(r13)
+            out.append("- Depth 13 (%s) within 4 GB: %s — measured peak %s GB (builder %s GB, RSS rise %s GB), estimate %s GB."
+                       % (one_k, verdict(peak is not None and peak <= SVO_GOAL_DEPTH13_BYTES),
+                          "%.2f" % (peak / 1e9) if peak else "—", "%.2f" % (r13.get("peak_bytes") / 1e9),
+                          "%.2f" % (r13.get("rss_peak_bytes") / 1e9), "%.2f" % (r13.get("est_peak_bytes") / 1e9)))
+        else:
+            def peak_gb(d):
+                p = svo_measured_peak(data.find(one_k, d, 2) or data.find(one_k, d, 1))
+                return p / 1e9 if p else None
 
-        out.append("- Depth 13 (%s) within 4 GB: %s." % (
-            SVO_ONE_K, absent(SVO_ONE_K, 13, peak_gb, SVO_GOAL_DEPTH13_BYTES / 1e9, " GB peak")))
+            out.append("- Depth 13 (%s) within 4 GB: %s." % (
+                one_k, absent(one_k, 13, peak_gb, SVO_GOAL_DEPTH13_BYTES / 1e9, " GB peak")))
     return out
 
 

@@ -667,6 +667,7 @@ struct TriFrame {
     glm::vec3 face{0.0f, 0.0f, 1.0f};
     glm::vec3 vn[3];
     bool has_vn = false;
+    bool want_color = true, want_normal = true;  // streams that will be stored
     const Texture* tex = nullptr;
     glm::dvec2 uv[3];
     double texel_per_area = 0;  // texels per unit of 3D area (voxel units)
@@ -710,6 +711,8 @@ struct TriFrame {
         const int mat = t.material;
         factor = P->materials[static_cast<size_t>(mat)].base_color;
         has_vn = P->has_normals;
+        want_color = (P->attributes & RK_SVO_ATTR_COLOR) != 0;
+        want_normal = (P->attributes & RK_SVO_ATTR_NORMAL) != 0;
         if (has_vn) {
             const size_t nstride = m.normal_stride ? m.normal_stride : 3 * sizeof(float);
             for (int k = 0; k < 3; ++k) vn[k] = P->vertex_attr3(m.normals, nstride, P->index(t.src, k));
@@ -768,7 +771,7 @@ struct TriFrame {
             cx += gx * ar;
             cy += gy * ar;
             area2 += ar;
-            if (tex) {
+            if (tex && want_color) {
                 // Split the piece into 4^s congruent sub-triangles until each spans about a texel
                 // (s <= 4), sampling each at its centroid with the mip level of its footprint: an
                 // area average that stays inside the polygon. Texel extent of a triangle of area A ~ sqrt(2A).
@@ -805,11 +808,11 @@ struct TriFrame {
         }
         const double gu = cu + cx, gv = cv + cy;
         glm::vec4 col = factor;
-        if (tex) col *= touch ? tex->sample(uv_at(gu, gv).x, uv_at(gu, gv).y, 0.0) : csum / static_cast<float>(area2);
+        if (tex && want_color) col *= touch ? tex->sample(uv_at(gu, gv).x, uv_at(gu, gv).y, 0.0) : csum / static_cast<float>(area2);
         // Normal at the polygon's centroid: interpolated normals are linear in the barycentrics, so
         // this is their area-weighted mean over the polygon (normalised once).
         glm::vec3 nrm = face;
-        if (has_vn) {
+        if (has_vn && want_normal) {
             glm::vec3 s(0.0f);
             for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
             const float l = glm::length(s);
@@ -979,6 +982,7 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
     }
     // Emit in Morton order: the chunk's key, then the local Morton index (bitmap scan).
     const SrgbTables& srgb = SrgbTables::get();
+    const bool want_normal = (P.attributes & RK_SVO_ATTR_NORMAL) != 0;
     const uint64_t chunk_key = morton(org[0] >> cs, org[1] >> cs, org[2] >> cs) << (3 * cs);
     for (size_t wi = 0; wi < (cells + 63) / 64; ++wi) {
         for (uint64_t bits = W.touched[wi]; bits; bits &= bits - 1) {
@@ -989,11 +993,11 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
             if (A.area > 0.0f) {
                 l.weight = A.area;
                 l.color = srgb.pack(A.col / A.area);
-                l.normal = rk_svo_pack_normal(A.nrm);
+                l.normal = want_normal ? rk_svo_pack_normal(A.nrm) : 0u;
             } else {
                 l.weight = 0.0f;
                 l.color = srgb.pack(A.tcol / std::max(A.touch, 1.0f));
-                l.normal = rk_svo_pack_normal(A.tnrm);
+                l.normal = want_normal ? rk_svo_pack_normal(A.tnrm) : 0u;
             }
             l.material = A.best_mat;
             out.push_back(l);

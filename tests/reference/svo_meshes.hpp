@@ -149,6 +149,49 @@ inline SvoMeshData torus(int major, int minor, double R = 1.0, double r = 0.35, 
     return m;
 }
 
+/// A closed tube (cylinder with flat caps) from a to b: segments x rings quads plus two fans.
+inline void append_tube(SvoMeshData& m, glm::dvec3 a, glm::dvec3 b, double radius, int segments, int rings)
+{
+    const glm::dvec3 axis = glm::normalize(b - a);
+    const glm::dvec3 t = std::fabs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 e1 = glm::normalize(glm::cross(axis, t)), e2 = glm::cross(axis, e1);
+    const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
+    for (int r = 0; r <= rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            const double ang = 2.0 * kPi * s / segments;
+            const glm::dvec3 p = a + (b - a) * (static_cast<double>(r) / rings) + radius * (std::cos(ang) * e1 + std::sin(ang) * e2);
+            push_vertex(m, to_vec3(p.x, p.y, p.z));
+        }
+    auto id = [&](int r, int s) { return base + static_cast<std::uint32_t>(r * segments + (s % segments)); };
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            push_tri(m, id(r, s), id(r, s + 1), id(r + 1, s + 1));
+            push_tri(m, id(r, s), id(r + 1, s + 1), id(r + 1, s));
+        }
+    const std::uint32_t ca = static_cast<std::uint32_t>(m.positions.size());
+    push_vertex(m, to_vec3(a.x, a.y, a.z));
+    const std::uint32_t cb = ca + 1;
+    push_vertex(m, to_vec3(b.x, b.y, b.z));
+    for (int s = 0; s < segments; ++s) {
+        push_tri(m, ca, id(0, s + 1), id(0, s));
+        push_tri(m, cb, id(rings, s), id(rings, s + 1));
+    }
+}
+
+/// A standing figure of 1,024 triangles, 1.8 units tall (torso, head, arms, legs as closed tubes
+/// and an icosphere): a stand-in for the ~1k-triangle character of Gritzner's thesis, whose
+/// bounding cube, unlike a sphere's, is mostly empty. Parts overlap (not one closed surface).
+inline SvoMeshData figure()
+{
+    SvoMeshData m = icosphere(2, 0.12, glm::dvec3(0.0, 1.62, 0.0));     // head: 320
+    append_tube(m, {0.0, 0.85, 0.0}, {0.0, 1.45, 0.0}, 0.17, 16, 6);    // torso: 224
+    append_tube(m, {-0.1, 0.0, 0.0}, {-0.1, 0.85, 0.0}, 0.07, 12, 4);   // legs: 2 x 120
+    append_tube(m, {0.1, 0.0, 0.0}, {0.1, 0.85, 0.02}, 0.07, 12, 4);
+    append_tube(m, {-0.2, 1.42, 0.0}, {-0.42, 0.9, 0.08}, 0.05, 12, 4); // arms: 2 x 120
+    append_tube(m, {0.2, 1.42, 0.0}, {0.45, 1.0, -0.1}, 0.05, 12, 4);
+    return m;
+}
+
 /// Box [lo, hi], rotated about its centre by `euler` radians (x, then y, then z); 12 triangles.
 inline SvoMeshData box(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 euler = glm::dvec3(0.0))
 {
