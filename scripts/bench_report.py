@@ -777,9 +777,15 @@ def svo_section(context, suite, errors, png):
     data = SvoData(context, suite, errors)
     md = ["## " + suite.title, ""]
     loads = [r.get("load_avg_1m") for r in data.rows if r.get("load_avg_1m") is not None and r.get("load_avg_1m") >= 0]
-    load_text = (" The 1-minute load average after the rows ranged from %.2f to %.2f on %s CPUs: above the CPU count "
-                 "other jobs competed for the cores, which slows 2-thread builds most." % (
-                     min(loads), max(loads), context.get("num_cpus", "?"))) if loads else ""
+    load_text = ""
+    if loads:
+        load_text = " The 1-minute load average after the rows ranged from %.2f to %.2f on %s CPUs" % (
+            min(loads), max(loads), context.get("num_cpus", "?"))
+        ncpu = context.get("num_cpus")
+        if isinstance(ncpu, (int, float)) and max(loads) > ncpu:
+            load_text += ": above the CPU count other jobs competed for the cores, which slows 2-thread builds most."
+        else:
+            load_text += " (not above the CPU count)."
     md.append("Source: `%s`. Machine: %s CPUs (see [Machine](#machine)); the times are wall clock and depend on "
               "what else the machine runs.%s" % (suite.source or "bench/bench_svo.cpp", context.get("num_cpus", "?"),
                                                    load_text))

@@ -196,27 +196,9 @@ SvoError load_code(const Bytes& f, SvoTree* loaded = nullptr, std::string* msg =
     return st.code;
 }
 
-const char* code_name(SvoError e)
-{
-    switch (e) {
-        case SvoError::ok: return "ok";
-        case SvoError::invalid_argument: return "invalid_argument";
-        case SvoError::empty_mesh: return "empty_mesh";
-        case SvoError::budget_exceeded: return "budget_exceeded";
-        case SvoError::cancelled: return "cancelled";
-        case SvoError::too_large: return "too_large";
-        case SvoError::io: return "io";
-        case SvoError::bad_magic: return "bad_magic";
-        case SvoError::unsupported_version: return "unsupported_version";
-        case SvoError::truncated: return "truncated";
-        case SvoError::corrupt: return "corrupt";
-        case SvoError::checksum_mismatch: return "checksum_mismatch";
-    }
-    return "?";
-}
 
 #define EXPECT_CODE(expected, actual, what) \
-    EXPECT_EQ(code_name(expected), std::string(code_name(actual))) << what
+    EXPECT_EQ(svo_error_name(expected), std::string(svo_error_name(actual))) << what
 
 /// A round trip in memory and through a file, plus the checks every loaded tree must pass.
 void check_round_trip(const SvoTree& t, const std::string& what)
@@ -699,7 +681,7 @@ TEST(SvoFileCorrupt, EverySingleBitFlip)
                 const bool well_formed = v >= 208 && v <= 360 && (v - 208) % 8 == 0;
                 want = !well_formed ? SvoError::corrupt : v > size ? SvoError::truncated : SvoError::checksum_mismatch;
             }
-            ASSERT_EQ(code_name(want), std::string(code_name(e))) << "byte " << i << " bit " << bit << " (header " << hs << ")";
+            ASSERT_EQ(svo_error_name(want), std::string(svo_error_name(e))) << "byte " << i << " bit " << bit << " (header " << hs << ")";
         }
     EXPECT_EQ(counts[int(SvoError::ok)], 0);
     EXPECT_GT(counts[int(SvoError::checksum_mismatch)], int(8 * (f.size() - 16)) - 1);

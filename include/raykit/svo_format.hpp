@@ -34,6 +34,26 @@ enum class SvoError {
     checksum_mismatch,  ///< the payload does not match its checksum
 };
 
+/// svo_error_name: the enumerator's name ("ok", "checksum_mismatch", ...), for logs and tests.
+inline const char* svo_error_name(SvoError e)
+{
+    switch (e) {
+        case SvoError::ok: return "ok";
+        case SvoError::invalid_argument: return "invalid_argument";
+        case SvoError::empty_mesh: return "empty_mesh";
+        case SvoError::budget_exceeded: return "budget_exceeded";
+        case SvoError::cancelled: return "cancelled";
+        case SvoError::too_large: return "too_large";
+        case SvoError::io: return "io";
+        case SvoError::bad_magic: return "bad_magic";
+        case SvoError::unsupported_version: return "unsupported_version";
+        case SvoError::truncated: return "truncated";
+        case SvoError::corrupt: return "corrupt";
+        case SvoError::checksum_mismatch: return "checksum_mismatch";
+    }
+    return "?";
+}
+
 /// Outcome of an octree operation: `code` and a human-readable message naming what was wrong.
 struct SvoStatus {
     SvoError code = SvoError::ok;

@@ -225,26 +225,6 @@ void mutate(Rng& r, Bytes& f)
     if (fix) fix_crcs(f);
 }
 
-#ifndef RAYKIT_LIBFUZZER
-const char* code_name(SvoError e)
-{
-    switch (e) {
-        case SvoError::ok: return "ok";
-        case SvoError::invalid_argument: return "invalid_argument";
-        case SvoError::empty_mesh: return "empty_mesh";
-        case SvoError::budget_exceeded: return "budget_exceeded";
-        case SvoError::cancelled: return "cancelled";
-        case SvoError::too_large: return "too_large";
-        case SvoError::io: return "io";
-        case SvoError::bad_magic: return "bad_magic";
-        case SvoError::unsupported_version: return "unsupported_version";
-        case SvoError::truncated: return "truncated";
-        case SvoError::corrupt: return "corrupt";
-        case SvoError::checksum_mismatch: return "checksum_mismatch";
-    }
-    return "?";
-}
-#endif
 
 }  // namespace
 
@@ -315,7 +295,7 @@ int main(int argc, char** argv)
     std::printf("fuzz_svo_load: seed %llu, %.1f s, %ld iterations, %ld loaded\n", static_cast<unsigned long long>(seed), seconds, iters,
                 counts[0]);
     for (int c = 1; c < 16; ++c)
-        if (counts[c]) std::printf("  %-20s %ld\n", code_name(SvoError(c)), counts[c]);
+        if (counts[c]) std::printf("  %-20s %ld\n", svo_error_name(SvoError(c)), counts[c]);
     return 0;
 }
 #endif
