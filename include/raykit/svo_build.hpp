@@ -359,7 +359,7 @@ inline void parallel_for(const SvoBuildOptions& opt, size_t n, const std::functi
 /// sRGB <-> 8-bit without pow, bit-identical to rk_svo_pack_color / rk_svo_unpack_color: decoding
 /// is a 256-entry table of rk_srgb_decode; encoding counts the thresholds (the smallest float that
 /// rk_svo_pack_unorm8(rk_srgb_encode(x)) maps to code k, found once by bisection on float bits;
-/// the map is monotone) below x.
+/// the map is monotone) below x, starting from a 4096-bucket table of lower bounds.
 struct SrgbTables {
     float decode[256];
     float threshold[256];  // threshold[k]: smallest x with code >= k (k = 1..255)
@@ -377,13 +377,20 @@ struct SrgbTables {
             }
             std::memcpy(&threshold[k], &lo, 4);
         }
+        for (uint32_t i = 0; i <= 4096; ++i) {
+            const float x = static_cast<float>(i) / 4096.0f;
+            uint32_t c = 0;
+            while (c < 255u && threshold[c + 1] <= x) ++c;
+            bucket[i] = static_cast<uint8_t>(c);
+        }
     }
+    uint8_t bucket[4097];  // code at x = i / 4096: a lower bound for the codes of [i, i+1) / 4096
     uint32_t encode8(float x) const
     {
         if (!(x > 0.0f)) return 0u;
-        uint32_t c = 0;
-        for (uint32_t step = 128; step > 0; step >>= 1)
-            if (c + step < 256 && threshold[c + step] <= x) c += step;
+        if (x >= 1.0f) return 255u;
+        uint32_t c = bucket[static_cast<uint32_t>(x * 4096.0f)];
+        while (c < 255u && threshold[c + 1] <= x) ++c;  // a few steps at most (sRGB's slope is <= 3295)
         return c;
     }
     uint32_t pack(const glm::vec4& c) const
