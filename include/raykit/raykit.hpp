@@ -1,4 +1,4 @@
-// raykit — umbrella header: every CPU-side part of the kit.
+// raykit — umbrella header: every CPU-side part of the kit (svo_gltf.hpp, which needs tinygltf, is opt-in).
 #pragma once
 
 #include "raykit/bloom.hpp"
@@ -15,5 +15,9 @@
 #include "raykit/interior_surface.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_source.hpp"
+#include "raykit/svo_build.hpp"
+#include "raykit/svo_file.hpp"
+#include "raykit/svo_format.hpp"
+#include "raykit/svo_mesh.hpp"
 #include "raykit/tonemap.hpp"
 #include "raykit/window_glass.hpp"
