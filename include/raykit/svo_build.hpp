@@ -53,8 +53,6 @@ constexpr uint32_t kSvoSubvoxelBits = 16;
 namespace svo_detail {
 __extension__ typedef __int128 i128;
 
-inline double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
-
 /// Morton key of a cell (21 bits per axis), bit 3l = x bit l, 3l+1 = y, 3l+2 = z.
 inline uint64_t spread3(uint32_t v)
 {
@@ -82,55 +80,84 @@ inline int64_t svo_snap_coordinate(float p, float root_min, float root_size, uin
     return std::llround((static_cast<double>(p) - static_cast<double>(root_min)) * scale);
 }
 
+namespace svo_detail {
+
+/// The separating-axis data of one lattice triangle (|coordinate| < 2^40): its plane n.x = d
+/// (n = (v1 - v0) x (v2 - v0)) and, for the 9 axes e_i x unit_k (e_i = v_{i+1} - v_i), the axis's
+/// two non-zero components and the triangle's projection interval. Every product is exact in
+/// 128-bit integers (coordinates < 2^41 after differences, |n| < 2^83, projections < 2^124).
+struct SatTriangle {
+    struct Axis { int64_t au, aw; i128 tlo, thi; int ka, kb; };  // au on axis ka, aw on axis kb
+    i128 n[3];
+    i128 d;
+    Axis ax[3][3];  // ax[k][i] = e_i x unit_k
+
+    explicit SatTriangle(const int64_t (*v)[3])
+    {
+        int64_t e[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int a = 0; a < 3; ++a) e[i][a] = v[(i + 1) % 3][a] - v[i][a];
+        // n = e0 x (v2 - v0) = e0 x -e2.
+        n[0] = (i128)e[0][1] * -e[2][2] - (i128)e[0][2] * -e[2][1];
+        n[1] = (i128)e[0][2] * -e[2][0] - (i128)e[0][0] * -e[2][2];
+        n[2] = (i128)e[0][0] * -e[2][1] - (i128)e[0][1] * -e[2][0];
+        d = 0;
+        for (int a = 0; a < 3; ++a) d += n[a] * v[0][a];
+        for (int k = 0; k < 3; ++k)
+            for (int i = 0; i < 3; ++i) {
+                Axis& A = ax[k][i];
+                A.ka = (k + 1) % 3;
+                A.kb = (k + 2) % 3;
+                A.au = e[i][A.kb];  // e_i x unit_k: e[kb] on axis ka, -e[ka] on axis kb
+                A.aw = -e[i][A.ka];
+                for (int j = 0; j < 3; ++j) {
+                    const i128 p = (i128)A.au * v[j][A.ka] + (i128)A.aw * v[j][A.kb];
+                    if (j == 0 || p < A.tlo) A.tlo = p;
+                    if (j == 0 || p > A.thi) A.thi = p;
+                }
+            }
+    }
+    /// Whether the box [bmin, bmin + size]^3 and the triangle overlap on axis A (touching counts).
+    static bool axis_ok(const Axis& A, const int64_t bmin[3], int64_t size)
+    {
+        const i128 base = (i128)A.au * bmin[A.ka] + (i128)A.aw * bmin[A.kb];
+        const i128 blo = base + (i128)std::min<int64_t>(A.au, 0) * size + (i128)std::min<int64_t>(A.aw, 0) * size;
+        const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * size + (i128)std::max<int64_t>(A.aw, 0) * size;
+        return !(A.thi < blo || A.tlo > bhi);
+    }
+    /// Whether the triangle's plane passes through the box (touching counts).
+    bool plane_ok(const int64_t bmin[3], int64_t size) const
+    {
+        i128 lo = 0, hi = 0;
+        for (int a = 0; a < 3; ++a) {
+            const i128 p0 = n[a] * bmin[a], p1 = n[a] * (bmin[a] + size);
+            lo += p0 < p1 ? p0 : p1;
+            hi += p0 < p1 ? p1 : p0;
+        }
+        return !(d < lo || d > hi);
+    }
+};
+
+}  // namespace svo_detail
+
 /// svo_triangle_box_overlap: whether the closed triangle v[0..2] and the closed axis-aligned box
 /// [box_min, box_min + box_size]^3 intersect, both in lattice integers (|coordinate| < 2^40).
 /// The 13 separating axes (3 box normals, the triangle normal, 9 edge x box-axis cross products),
 /// each decided exactly in 128-bit integers: touching counts as overlap. A degenerate (collinear)
-/// triangle is tested as the segment it is. Cost: ~40 integer multiplies.
+/// triangle is tested as the segment it is. Cost: ~40 integer multiplies. (The builder sweeps
+/// whole cell ranges with the same svo_detail::SatTriangle.)
 inline bool svo_triangle_box_overlap(const int64_t v[3][3], const int64_t box_min[3], int64_t box_size)
 {
-    using svo_detail::i128;
     for (int a = 0; a < 3; ++a) {  // box normals: bounding-box overlap
         const int64_t lo = std::min(v[0][a], std::min(v[1][a], v[2][a]));
         const int64_t hi = std::max(v[0][a], std::max(v[1][a], v[2][a]));
         if (hi < box_min[a] || lo > box_min[a] + box_size) return false;
     }
-    int64_t e[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int a = 0; a < 3; ++a) e[i][a] = v[(i + 1) % 3][a] - v[i][a];
-    // Triangle normal n = e0 x (v2 - v0) = e0 x -e2.
-    const i128 n[3] = {(i128)e[0][1] * -e[2][2] - (i128)e[0][2] * -e[2][1],
-                       (i128)e[0][2] * -e[2][0] - (i128)e[0][0] * -e[2][2],
-                       (i128)e[0][0] * -e[2][1] - (i128)e[0][1] * -e[2][0]};
-    {
-        // Plane: n.x = n.v0 must lie between the box's extreme projections.
-        i128 d = 0, lo = 0, hi = 0;
-        for (int a = 0; a < 3; ++a) {
-            d += n[a] * v[0][a];
-            const i128 p0 = n[a] * box_min[a], p1 = n[a] * (box_min[a] + box_size);
-            lo += p0 < p1 ? p0 : p1;
-            hi += p0 < p1 ? p1 : p0;
-        }
-        if (d < lo || d > hi) return false;
-    }
-    for (int i = 0; i < 3; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            // axis = e_i x unit_k: components (u, w) on the two other axes.
-            const int ka = (k + 1) % 3, kb = (k + 2) % 3;
-            // axis = e_i x unit_k: component e[kb] on axis ka and -e[ka] on axis kb.
-            const int64_t au = e[i][kb], aw = -e[i][ka];
-            i128 tlo = 0, thi = 0;
-            for (int j = 0; j < 3; ++j) {
-                const i128 p = (i128)au * v[j][ka] + (i128)aw * v[j][kb];
-                if (j == 0 || p < tlo) tlo = p;
-                if (j == 0 || p > thi) thi = p;
-            }
-            const i128 base = (i128)au * box_min[ka] + (i128)aw * box_min[kb];
-            const i128 blo = base + (i128)std::min<int64_t>(au, 0) * box_size + (i128)std::min<int64_t>(aw, 0) * box_size;
-            const i128 bhi = base + (i128)std::max<int64_t>(au, 0) * box_size + (i128)std::max<int64_t>(aw, 0) * box_size;
-            if (thi < blo || tlo > bhi) return false;
-        }
-    }
+    const svo_detail::SatTriangle T(v);
+    if (!T.plane_ok(box_min, box_size)) return false;
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i)
+            if (!svo_detail::SatTriangle::axis_ok(T.ax[k][i], box_min, box_size)) return false;
     return true;
 }
 
@@ -297,7 +324,7 @@ struct Prepared {
     std::vector<SvoMaterial> materials;      // table (index = material id)
     std::vector<int> material_texture;       // texture per material, -1 none
     std::vector<Texture> textures;
-    bool has_normals = false, has_uvs = false;
+    bool has_normals = false;
     uint32_t attributes = 0;
     std::vector<Tri> outside;  // solid fill: triangles outside the root still count in the parity
 
@@ -514,7 +541,6 @@ inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P
     }
     P.attributes = opt.attributes;
     P.has_normals = mesh.normals != nullptr;
-    P.has_uvs = mesh.uvs != nullptr;
     if (!snap) {
         stats.triangles_used = usable.size();
         return true;
@@ -864,41 +890,16 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
         hi[a] = std::min<int64_t>(hi_in[a], mx >> shift);
         if (lo[a] > hi[a]) return;
     }
-    int64_t e[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int a = 0; a < 3; ++a) e[i][a] = v[(i + 1) % 3][a] - v[i][a];
-    const i128 n[3] = {(i128)e[0][1] * -e[2][2] - (i128)e[0][2] * -e[2][1], (i128)e[0][2] * -e[2][0] - (i128)e[0][0] * -e[2][2],
-                       (i128)e[0][0] * -e[2][1] - (i128)e[0][1] * -e[2][0]};
-    i128 d = 0;
-    for (int a = 0; a < 3; ++a) d += n[a] * v[0][a];
+    const SatTriangle T(v);
+    const i128 (&n)[3] = T.n;
+    const i128 d = T.d;
     const double nd[3] = {static_cast<double>(n[0]), static_cast<double>(n[1]), static_cast<double>(n[2])};
     int w = 0;
     for (int a = 1; a < 3; ++a)
         if (std::fabs(nd[a]) > std::fabs(nd[w])) w = a;
     const int u = (w + 1) % 3, vv = (w + 2) % 3;
-    // Edge axes e_i x unit_k (components au on axis ka, aw on axis kb) and the triangle's
-    // projection on each; ax[k][i].
-    struct Axis { int64_t au, aw; i128 tlo, thi; int ka, kb; };
-    Axis ax[3][3];
-    for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 3; ++i) {
-            Axis& A = ax[k][i];
-            A.ka = (k + 1) % 3;
-            A.kb = (k + 2) % 3;
-            A.au = e[i][A.kb];
-            A.aw = -e[i][A.ka];
-            for (int j = 0; j < 3; ++j) {
-                const i128 p = (i128)A.au * v[j][A.ka] + (i128)A.aw * v[j][A.kb];
-                if (j == 0 || p < A.tlo) A.tlo = p;
-                if (j == 0 || p > A.thi) A.thi = p;
-            }
-        }
-    auto axis_ok = [&](const Axis& A, const int64_t bmin[3]) {
-        const i128 base = (i128)A.au * bmin[A.ka] + (i128)A.aw * bmin[A.kb];
-        const i128 blo = base + (i128)std::min<int64_t>(A.au, 0) * S + (i128)std::min<int64_t>(A.aw, 0) * S;
-        const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * S + (i128)std::max<int64_t>(A.aw, 0) * S;
-        return !(A.thi < blo || A.tlo > bhi);
-    };
+    auto axis_ok = [&](const SatTriangle::Axis& A, const int64_t bmin[3]) { return SatTriangle::axis_ok(A, bmin, S); };
+    const auto& ax = T.ax;
     const double inv_s = 1.0 / static_cast<double>(S);
     const double dd = static_cast<double>(d), inv_nw = 1.0 / nd[w];
     for (int64_t cu = lo[u]; cu <= hi[u]; ++cu) {
@@ -929,13 +930,7 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             }
             for (int64_t cw = k0; cw <= k1; ++cw) {
                 bmin[w] = cw * S;
-                i128 plo = 0, phi = 0;
-                for (int a = 0; a < 3; ++a) {
-                    const i128 p0 = n[a] * bmin[a], p1 = n[a] * (bmin[a] + S);
-                    plo += p0 < p1 ? p0 : p1;
-                    phi += p0 < p1 ? p1 : p0;
-                }
-                if (d < plo || d > phi) continue;
+                if (!T.plane_ok(bmin, S)) continue;
                 if (!axis_ok(ax[u][0], bmin) || !axis_ok(ax[u][1], bmin) || !axis_ok(ax[u][2], bmin)) continue;
                 if (!axis_ok(ax[vv][0], bmin) || !axis_ok(ax[vv][1], bmin) || !axis_ok(ax[vv][2], bmin)) continue;
                 int64_t c[3];
