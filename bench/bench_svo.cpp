@@ -65,6 +65,7 @@ struct MeshCase {
     std::string title;  // for the report
     int full_max_depth = 11;
     std::shared_ptr<const raykit::SvoMeshData> mesh;
+    uint32_t attributes = kAttributes;  // streams stored
 };
 
 std::string env(const char* name)
@@ -164,12 +165,12 @@ struct Build {
     uint64_t rss_rise = 0;  // 0: not measured
 };
 
-raykit::SvoBuildOptions options(int depth, int threads)
+raykit::SvoBuildOptions options(int depth, int threads, uint32_t attributes)
 {
     raykit::SvoBuildOptions o;
     o.depth = depth;
     o.threads = threads;
-    o.attributes = kAttributes;
+    o.attributes = attributes;
     return o;
 }
 
@@ -183,11 +184,11 @@ uint64_t prepare(Build& b)
 
 /// Builds into b, prepared by prepare() (rss0 = its result); b.seconds times build_svo alone; false
 /// with `err`.
-bool build(const raykit::SvoMeshData& mesh, int depth, int threads, Build& b, uint64_t rss0, std::string& err)
+bool build(const raykit::SvoMeshData& mesh, uint32_t attributes, int depth, int threads, Build& b, uint64_t rss0, std::string& err)
 {
     raykit::SvoStatus st;
     const auto t0 = std::chrono::steady_clock::now();
-    const bool ok = raykit::build_svo(mesh.view(), options(depth, threads), b.tree, st, &b.stats);
+    const bool ok = raykit::build_svo(mesh.view(), options(depth, threads, attributes), b.tree, st, &b.stats);
     b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const uint64_t hwm = rss0 ? rss_peak_bytes() : 0;
     b.rss_rise = hwm > rss0 ? hwm - rss0 : 0;
@@ -238,10 +239,10 @@ void size_counters(benchmark::State& s, const Build& b, uint64_t est, uint64_t r
 }
 
 /// Skips the row (true) when the build's memory estimate is over the limit or invalid.
-bool skip_for_memory(benchmark::State& s, const raykit::SvoMeshData& mesh, int depth, int threads, uint64_t& est)
+bool skip_for_memory(benchmark::State& s, const raykit::SvoMeshData& mesh, uint32_t attributes, int depth, int threads, uint64_t& est)
 {
     raykit::SvoStatus st;
-    est = raykit::estimate_svo_memory(mesh.view(), options(depth, threads), st);
+    est = raykit::estimate_svo_memory(mesh.view(), options(depth, threads, attributes), st);
     if (est == 0) {
         s.SkipWithError(("estimate_svo_memory failed: " + st.message).c_str());
         return true;
@@ -268,9 +269,10 @@ void register_row(const MeshCase& mc, int depth, int threads, bool paired, bool 
                               std::to_string(threads) + (threads == 1 ? " thread" : " threads") +
                               (paired ? ", paired with 1 thread" : "") + ")|";
     const std::shared_ptr<const raykit::SvoMeshData> mesh = mc.mesh;
+    const uint32_t attrs = mc.attributes;
     auto* b = benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
         uint64_t est = 0;
-        if (skip_for_memory(s, *mesh, depth, threads, est)) return;
+        if (skip_for_memory(s, *mesh, attrs, depth, threads, est)) return;
         Build main_b, other;
         std::string err;
         std::vector<double> t1, t2, ratio, times;
@@ -279,15 +281,15 @@ void register_row(const MeshCase& mc, int depth, int threads, bool paired, bool 
         for (auto _ : s) {
             s.PauseTiming();
             const bool single_first = paired && (iter & 1) == 1;
-            bool ok = !single_first || build(*mesh, depth, 1, other, prepare(other), err);
+            bool ok = !single_first || build(*mesh, attrs, depth, 1, other, prepare(other), err);
             other.tree = raykit::SvoTree{};
             if (ok) {
                 const uint64_t rss0 = prepare(main_b);
                 s.ResumeTiming();
-                ok = build(*mesh, depth, threads, main_b, rss0, err);
+                ok = build(*mesh, attrs, depth, threads, main_b, rss0, err);
                 s.PauseTiming();
             }
-            if (ok && paired && !single_first) ok = build(*mesh, depth, 1, other, prepare(other), err);
+            if (ok && paired && !single_first) ok = build(*mesh, attrs, depth, 1, other, prepare(other), err);
             other.tree = raykit::SvoTree{};  // only its time is kept: do not hold two trees at once
             if (!ok) {
                 s.SkipWithError(("build_svo failed: " + err).c_str());
@@ -335,6 +337,8 @@ void register_svo()
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::icosphere(3))});
     meshes.push_back({"figure", "figure(): a 1.8-unit standing figure, 1,024 triangles (a stand-in for the thesis's 1,027-triangle character)", 13,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::figure())});
+    meshes.push_back({"figure_colour", "figure() with the colour stream only (what the thesis's format stores)", 11,
+                      std::make_shared<const raykit::SvoMeshData>(rkmesh::figure()), RK_SVO_ATTR_COLOR});
     meshes.push_back({"menger2", "menger_sponge(2): unit cube, 2,112 triangles, 400 square holes, axis-aligned faces", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::menger_sponge(2))});
     meshes.push_back({"uvsphere256", "uv_sphere(256, 137): unit sphere, 69,632 triangles (the ~70k case)", 11,

@@ -1,7 +1,8 @@
 // raykit-voxelize: glTF (.gltf / .glb) -> raykit sparse voxel octree file (.rksvo).
 //
 //   raykit-voxelize in.gltf|in.glb out.rksvo (--depth N | --voxel-size S) [--solid] [--budget MB]
-//                   [--attributes color,normal,material] [--pointer-bits N] [--threads N] [--quiet]
+//                   [--attributes color,normal,material] [--pointer-bits N] [--threads N]
+//                   [--preview PREVIEW.png] [--quiet]
 //
 // Loads the glTF with raykit/svo_gltf.hpp, estimates the memory (estimate_svo_memory), builds the
 // octree (build_svo), writes it (svo_save_file) and prints a summary. Exit codes: 0 success,
@@ -15,6 +16,8 @@
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
+#else
+#include <stb/stb_image_write.h>  // libstb provides the implementation (linked beside tinygltf)
 #endif
 
 #include <cerrno>
@@ -51,10 +54,51 @@ const char* const kUsage =
     "                         (default: color,normal)\n"
     "  --pointer-bits N       near-pointer bits of the packer, 4..23 (default 23)\n"
     "  --threads N            worker threads, 0 = all cores (default 0)\n"
+    "  --preview FILE.png     also write three orthographic views of the voxels (front, side,\n"
+    "                         top; at most 512 pixels a side, shaded by the stored normals)\n"
     "  --quiet                print errors only\n"
     "  --help                 show this text\n"
     "\n"
     "Exit status: 0 success, 1 load/build/save failure, 2 bad arguments.\n";
+
+/// Three orthographic views of the voxels (looking along -z, -x and -y), side by side: the nearest
+/// voxel per pixel at level min(depth, 9), its stored colour (white without one), lit by its stored
+/// normal (or shaded by distance without normals). Returns false when the PNG cannot be written.
+bool write_preview(const raykit::SvoTree& t, const std::string& path)
+{
+    const uint32_t level = std::min<uint32_t>(t.depth, 9u), shift = t.depth - level, side = 1u << level, gap = 8;
+    const uint32_t width = 3 * side + 2 * gap, height = side;
+    std::vector<int32_t> depth(3ull * side * side, -1);
+    std::vector<glm::vec3> colour(3ull * side * side, glm::vec3(0.0f));
+    const glm::vec3 light = glm::normalize(glm::vec3(0.45f, 0.75f, 0.5f));
+    raykit::svo_for_each_voxel(t, [&](glm::uvec3 c, uint64_t a) {
+        const glm::uvec3 p = c >> shift;
+        const glm::vec3 col = t.color.empty() ? glm::vec3(1.0f) : glm::vec3(raykit::rk_svo_unpack_color(t.color[a]));
+        const bool lit = !t.normal.empty();
+        const float shade = lit ? 0.3f + 0.7f * std::max(0.0f, glm::dot(raykit::rk_svo_unpack_normal(t.normal[a]), light)) : 1.0f;
+        // Pixel (u, v) and nearness per view: front looks along -z, side along -x, top along -y.
+        const uint32_t u[3] = {p.x, side - 1 - p.z, p.x}, v[3] = {side - 1 - p.y, side - 1 - p.y, p.z};
+        const uint32_t nearness[3] = {p.z, p.x, p.y};
+        for (uint32_t k = 0; k < 3; ++k) {
+            const size_t i = (size_t(k) * side + v[k]) * side + u[k];
+            if (int32_t(nearness[k]) <= depth[i]) continue;
+            depth[i] = int32_t(nearness[k]);
+            const float fog = lit ? 1.0f : 0.45f + 0.55f * float(nearness[k] + 1) / float(side);
+            colour[i] = col * (shade * fog);
+        }
+    });
+    std::vector<uint8_t> rgb(size_t(width) * height * 3, 40);
+    for (uint32_t k = 0; k < 3; ++k)
+        for (uint32_t y = 0; y < side; ++y)
+            for (uint32_t x = 0; x < side; ++x) {
+                const size_t i = (size_t(k) * side + y) * side + x;
+                if (depth[i] < 0) continue;
+                const glm::vec3 s = raykit::rk_srgb_encode(glm::clamp(colour[i], glm::vec3(0.0f), glm::vec3(1.0f)));
+                uint8_t* o = &rgb[(size_t(y) * width + k * (side + gap) + x) * 3];
+                for (int ch = 0; ch < 3; ++ch) o[ch] = uint8_t(raykit::rk_svo_pack_unorm8(s[ch]));
+            }
+    return stbi_write_png(path.c_str(), int(width), int(height), 3, rgb.data(), int(width) * 3) != 0;
+}
 
 int usage_error(const std::string& msg)
 {
@@ -171,6 +215,7 @@ int main(int argc, char** argv)
     std::vector<std::string> positional;
     raykit::SvoBuildOptions opt;
     bool have_depth = false, have_size = false, quiet = false;
+    std::string preview_path;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--help" || a == "-h") {
@@ -195,7 +240,7 @@ int main(int argc, char** argv)
             inline_value = true;
         }
         const bool takes_value = a == "--depth" || a == "--voxel-size" || a == "--budget" || a == "--attributes" ||
-                                 a == "--pointer-bits" || a == "--threads";
+                                 a == "--pointer-bits" || a == "--threads" || a == "--preview";
         const bool flag = a == "--solid" || a == "--quiet";
         if (!takes_value && !flag) return usage_error("unknown option '" + a + "'");
         if (flag) {
@@ -233,6 +278,9 @@ int main(int argc, char** argv)
             long v = 0;
             if (!parse_int(value, 4, 23, v)) return usage_error("--pointer-bits must be an integer in 4..23, not '" + value + "'");
             opt.pointer_bits = uint32_t(v);
+        } else if (a == "--preview") {
+            if (value.empty()) return usage_error("--preview needs a file name");
+            preview_path = value;
         } else if (a == "--threads") {
             long v = 0;
             if (!parse_int(value, 0, 4096, v)) return usage_error("--threads must be an integer in 0..4096, not '" + value + "'");
@@ -282,6 +330,10 @@ int main(int argc, char** argv)
         return kExitFailure;
     }
     const double seconds_save = since(t_save);
+    if (!preview_path.empty() && !write_preview(tree, preview_path)) {
+        std::fprintf(stderr, "raykit-voxelize: cannot write the preview '%s'\n", preview_path.c_str());
+        return kExitFailure;
+    }
     if (quiet) return 0;
 
     const uint64_t structure = tree.structure_bytes(), attributes = tree.attribute_bytes();
