@@ -68,6 +68,11 @@ TEST(GpuParity, SvoCodecs)
                                          RK_EMIT_U(2, rk_svo_rel_ptr(d)); RK_EMIT_U(4, rk_svo_first_child(ord, d, fw));
                                          RK_EMIT_U(6, rk_svo_word_of(ord, RK_WORD(3, 0) >> 2u));)));
     exact.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+    cases.push_back(svo_case(RK_PARITY_X("rk_svo scalar codecs", "raykit/svo_format.glsl", (any, any, u, u), 6,
+                                         o[0] = float(rk_svo_pack_unorm8(a[0])); o[1] = float(rk_svo_pack_snorm16(a[1]));
+                                         uint w = RK_WORD(2, 3); o[2] = rk_svo_unpack_snorm16(w); o[3] = rk_svo_unpack_snorm16(w >> 16u);
+                                         o[4] = float(rk_svo_material_id(w)); o[5] = float(rk_svo_brick_levels(w % 21u));)));
+    exact.push_back({0, 1, 4, 5});
     for (size_t i = 0; i < cases.size(); ++i) {
         cases[i].abs_tol = 2e-7;
         cases[i].rel_tol = 2e-6;
