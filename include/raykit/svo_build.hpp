@@ -74,10 +74,20 @@ inline uint64_t svo_morton(glm::uvec3 cell) { return svo_detail::morton(cell.x, 
 /// svo_snap_coordinate: a mesh coordinate on the builder's lattice (2^(depth+16) steps per root
 /// edge, 0 at root_min): llround((p - root_min) * (2^(depth+16) / root_size)) in double.
 /// Exact when p - root_min is a multiple of the step; otherwise rounded to nearest (<= 1/2 step).
-inline int64_t svo_snap_coordinate(float p, float root_min, float root_size, uint32_t depth)
+inline int64_t svo_snap_coordinate(float p, float root_min, float root_size, uint32_t depth);
+
+namespace svo_detail {
+/// The unrounded lattice position of svo_snap_coordinate (double).
+inline double lattice_position(float p, float root_min, float root_size, uint32_t depth)
 {
     const double scale = std::ldexp(1.0, static_cast<int>(depth + kSvoSubvoxelBits)) / static_cast<double>(root_size);
-    return std::llround((static_cast<double>(p) - static_cast<double>(root_min)) * scale);
+    return (static_cast<double>(p) - static_cast<double>(root_min)) * scale;
+}
+}  // namespace svo_detail
+
+inline int64_t svo_snap_coordinate(float p, float root_min, float root_size, uint32_t depth)
+{
+    return std::llround(svo_detail::lattice_position(p, root_min, root_size, depth));
 }
 
 namespace svo_detail {
@@ -511,9 +521,10 @@ inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P
         if (!(size > 0.0f) || !std::isfinite(size)) size = std::max(1.0f, std::fabs(lo.x) * 1e-6f);
         for (int a = 0; a < 3; ++a) P.root_min[a] = (lo[a] + hi[a]) * 0.5f - size * 0.5f;
         // Keep the cube covering the box after the float rounding of the centre.
-        for (int a = 0; a < 3; ++a)
-            while (P.root_min[a] > lo[a] || P.root_min[a] + size < hi[a]) size = std::nextafter(size, INFINITY),
-                P.root_min[a] = std::min(P.root_min[a], lo[a]);
+        for (int a = 0; a < 3; ++a) {
+            P.root_min[a] = std::min(P.root_min[a], lo[a]);
+            while (P.root_min[a] + size < hi[a]) size = std::nextafter(size, INFINITY);  // grows only: earlier axes stay covered
+        }
         P.root_size = size;
     }
     if (usable.empty()) return st.fail(SvoError::empty_mesh, "no usable triangle (" + std::to_string(stats.skipped_bad_index) +
@@ -558,10 +569,9 @@ inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 p = P.vertex_attr3(mesh.positions, pstride, P.index(t, k));
             for (int a = 0; a < 3; ++a) {
-                const double q = (static_cast<double>(p[a]) - static_cast<double>(P.root_min[a])) *
-                                 (std::ldexp(1.0, static_cast<int>(P.depth + kSvoSubvoxelBits)) / static_cast<double>(P.root_size));
+                const double q = lattice_position(p[a], P.root_min[a], P.root_size, P.depth);
                 if (!(std::fabs(q) < limit)) { far = true; break; }
-                tri.v[k][a] = svo_snap_coordinate(p[a], P.root_min[a], P.root_size, P.depth);
+                tri.v[k][a] = std::llround(q);  // = svo_snap_coordinate
             }
         }
         if (far) { ++stats.skipped_outside; continue; }
@@ -606,8 +616,6 @@ inline double peak_bytes_per_voxel(uint32_t attributes)
 /// An upper estimate of the leaf voxels: per triangle, sqrt(3) x its area in voxels (a plane
 /// through a grid touches at most that many cells per unit area) plus rims along its perimeter;
 /// solid fill adds the mesh's bounding volume.
-inline double estimate_voxels(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh);
-
 inline double estimate_voxels(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
 {
     const size_t pstride = mesh.position_stride ? mesh.position_stride : 3 * sizeof(float);
@@ -640,10 +648,12 @@ inline double estimate_voxels(const Prepared& P, const SvoBuildOptions& opt, con
     return std::min(voxels, cells);
 }
 
-inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh)
+/// Peak bytes for the estimated voxels; `voxels_out` (may be null) receives the voxel estimate.
+inline uint64_t estimate(const Prepared& P, const SvoBuildOptions& opt, const SvoMesh& mesh, double* voxels_out = nullptr)
 {
     const size_t n = mesh.triangle_count;
     const double voxels = estimate_voxels(P, opt, mesh);
+    if (voxels_out) *voxels_out = voxels;
     double bytes = voxels * peak_bytes_per_voxel(opt.attributes);
     bytes += static_cast<double>(2 * n) * (sizeof(Tri) + 16.0);  // triangles + chunk bins
     const unsigned t = opt.threads > 0 ? static_cast<unsigned>(opt.threads) : std::max(1u, std::thread::hardware_concurrency());

@@ -287,7 +287,8 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
         if (stats_out) *stats_out = stats;
         return false;
     }
-    stats.estimated_peak_bytes = estimate(P, opt, mesh);
+    double estimated_voxels = 0;
+    stats.estimated_peak_bytes = estimate(P, opt, mesh, &estimated_voxels);
     if (opt.memory_budget && stats.estimated_peak_bytes > opt.memory_budget) {
         if (stats_out) *stats_out = stats;
         char msg[200];
@@ -364,7 +365,7 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
     // Voxelise the chunks in parallel, in batches; each batch's outputs are appended in chunk
     // Morton order (= voxel Morton order) and freed, so the leaves are held once, not twice.
     std::vector<Leaf> leaves;
-    leaves.reserve(static_cast<size_t>(std::min<double>(estimate_voxels(P, opt, mesh), 1e10)));  // untouched pages cost nothing
+    leaves.reserve(static_cast<size_t>(std::min<double>(estimated_voxels, 1e10)));  // untouched pages cost nothing
     std::vector<std::unique_ptr<ChunkWork>> work_pool;
     size_t work_created = 0;
     std::mutex pool_mutex;
@@ -408,7 +409,7 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
             leaves.insert(leaves.end(), v.begin(), v.end());
             std::vector<Leaf>().swap(v);
         }
-        mem.sub(pool_bytes + (leaves.size() - batch_leaves + batch_leaves) * sizeof(Leaf));
+        mem.sub(pool_bytes + leaves.size() * sizeof(Leaf));  // the leaves are counted again after the loop
     }
     work_pool.clear();
     if (cancelled) return finish(st.fail(SvoError::cancelled, "cancelled while voxelizing"));
