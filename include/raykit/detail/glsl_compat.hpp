@@ -51,6 +51,7 @@ using glm::exp;
 using glm::exp2;
 using glm::faceforward;
 using glm::floatBitsToUint;
+using glm::findMSB;
 using glm::floor;
 using glm::fract;
 using glm::inversesqrt;

@@ -1,0 +1,341 @@
+// raykit — svo_traverse.glsl: ray casting through a packed sparse voxel octree.
+//
+// Shared GLSL/C++ source (include/raykit/svo_traverse.hpp is the C++ build). rk_svo_trace casts one
+// ray through the words of docs/svo-format.md and returns the first non-empty voxel it enters (or,
+// with level of detail, the first node whose size falls below the ray's footprint).
+//
+// The method is the parametric, stack-based traversal of Laine and Karras ("Efficient Sparse Voxel
+// Octrees"), which Wilks ("Real-time GPU Ray Tracing with Volumetric Effects") ports to CUDA:
+// the root is mapped to [1, 2)^3, where every coordinate has the same float exponent and its
+// mantissa is a fixed-point cell address; the ray is mirrored so that every direction component
+// is negative (the exit corner of a cell is then its minimum corner); plane distances are one
+// multiply-add each (t = x * coef - bias); the ray pops back up to the level given by the highest
+// bit in which the old and new cell addresses differ (findMSB), so it restarts from the deepest
+// common ancestor. Unlike Gritzner's thesis ("3D graphics rendering using a polygon-voxel-hybrid
+// approach"), whose restart flipped one axis and could loop, every axis whose exit plane ties
+// steps at once (rays through edges and corners), and the loop has a hard bound.
+//
+// Before traversal the ray is clipped to the root in cube space and its origin moved to the entry
+// point, so cell distances are computed near 1 even for an origin far away. Direction components
+// below 2^-21 (after normalising) are replaced by 2^-21 of the same sign (no division by zero; a
+// ray lying in a cell's face plane belongs to the cells on the side of its direction's sign bit;
+// -0 counts as negative).
+//
+// Features (compile time; the variants line below lists what validation compiles):
+//   RK_SVO_TRACE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
+//       the ray's footprint cone.x + cone.y * distance (object units; rk_svo_pixel_cone gives the
+//       cone of a pixel). 0 = the cone is ignored and costs nothing.
+//   RK_SVO_TRACE_MAX_ITER (default 8192u): the hard bound on loop iterations. One iteration is one
+//       push, advance or pop; a ray never needs more than ~3 iterations per cell it visits at any
+//       level, which the tests measure (hit.iterations). A ray that reaches the bound reports no
+//       hit with iterations == RK_SVO_TRACE_MAX_ITER.
+//
+// @rk-variants RK_SVO_TRACE_LOD=0 | RK_SVO_TRACE_LOD=1 | RK_SVO_TRACE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRACE_MAX_ITER=64u
+// @rk-es 310
+#ifndef RK_SVO_TRAVERSE_GLSL
+#define RK_SVO_TRAVERSE_GLSL
+
+#include "common.glsl"
+#include "svo_format.glsl"
+
+#ifndef RK_SVO_TRACE_LOD
+#define RK_SVO_TRACE_LOD 0
+#endif
+#ifndef RK_SVO_TRACE_MAX_ITER
+#define RK_SVO_TRACE_MAX_ITER 8192u
+#endif
+
+// Stack entries: one per parent level 0 .. RK_SVO_MAX_DEPTH - 1.
+#define RK_SVO_TRACE_STACK 20
+// Direction components are at least this large after normalisation (2^-21).
+#define RK_SVO_TRACE_DIR_EPS 4.76837158203125e-7f
+
+/// The uniforms of one octree, as rk_svo_trace reads them (svo_trace_tree() fills it from an
+/// SvoTree in C++). `max_level` (<= depth) is the deepest level the ray descends to: depth for
+/// full detail, less to render a coarser tree from the same words.
+struct rk_svo_tree {
+    uint depth;
+    uint max_level;
+    uint desc_words;
+    uint brick_base_word;
+    vec3 root_min;
+    float root_size;
+};
+
+/// What rk_svo_trace found.
+///   hit: a non-empty node was entered within [0, t_max].
+///   t: distance along the caller's ray (origin + t * dir, in units of dir) where it is entered; 0
+///      when the origin is inside it. Accurate to a few float32 ULPs of the root size, plus the
+///      origin's own rounding when it is far away (see rk_svo_trace).
+///   level, cell: the node's level (depth, or less at a level-of-detail stop or max_level) and
+///      integer coordinates at that level.
+///   normal: unit axis vector of the face the ray entered through, facing the ray (where the ray
+///      enters through an edge or a corner, the axis entered last, lowest axis on an exact tie);
+///      for an origin inside the node, the face behind the origin.
+///   node, brick_bit, brick_mask: where the node's attributes are (rk_svo_trace_attr): the ordinal
+///      of the descriptor, or of the brick holding the node; inside a brick, the sub-node index
+///      (level depth-1) or mask bit (level depth), and the brick's mask.
+///   iterations: loop iterations used.
+struct rk_svo_trace_hit {
+    bool hit;
+    float t;
+    uint level;
+    uvec3 cell;
+    vec3 normal;
+    uint node;
+    uint brick_bit;
+    uvec2 brick_mask;
+    uint iterations;
+};
+
+/// rk_svo_pixel_cone: the footprint cone of a pixel for RK_SVO_TRACE_LOD: a pinhole camera with
+/// vertical field of view `fov_y` (radians) rendering `height` pixels sees a pixel that is
+/// cone.x + cone.y * distance wide (cone.x = 0). `scale` > 1 stops earlier (coarser, faster).
+/// Domain: fov_y in (0, pi), height >= 1. Cost: 1 tan, 1 div.
+RK_INLINE vec2 rk_svo_pixel_cone(float fov_y, float height, float scale)
+{
+    return vec2(0.0f, scale * 2.0f * tan(0.5f * fov_y) / max(height, 1.0f));
+}
+
+/// rk_svo_trace_child_mask_: internal. The child mask of the current parent: its descriptor's mask
+/// above the bricks, the brick's sub-node mask, or the byte of the sub-node `handle` in the brick.
+RK_INLINE uint rk_svo_trace_child_mask_(uint lp, uint top, uint b, uint pdesc, uvec2 bmask, uint handle)
+{
+    if (lp < top) return pdesc & RK_SVO_CHILD_MASK;
+    if (lp == top) return b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
+    uint w = handle < 4u ? bmask.x : bmask.y;
+    return (w >> (8u * (handle & 3u))) & 0xFFu;
+}
+
+/// rk_svo_trace: casts the ray origin + t * dir, t in [0, t_max], through `tree` and returns the
+/// first non-empty voxel (or level-of-detail node) it enters.
+/// Domain: finite origin and dir (dir may have zero or tiny components; a dir below 1.2e-38 in
+/// every component misses), t_max >= 0 (negative misses), a tree that passed svo_validate.
+/// Ties: a ray that only touches a voxel along an edge or corner, or runs in a face plane, may or
+/// may not report it (the tests compare with a float64 dense-grid DDA that brackets the answer).
+/// Accuracy: t within about 8 float32 ULPs of the distance to the root plus 1e-6 root sizes.
+/// Cost: per iteration ~30 ALU and at most one word load (a descriptor on push or pop, a far slot,
+/// 2 words for a brick); a brick's 4^3 voxels cost no further load. Loop bounded by
+/// RK_SVO_TRACE_MAX_ITER. No attribute is read (rk_svo_trace_attr gives their index).
+RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin, vec3 dir, float t_max, vec2 cone)
+{
+    rk_svo_trace_hit h;
+    h.hit = false;
+    h.t = 0.0f;
+    h.level = 0u;
+    h.cell = uvec3(0u);
+    h.normal = vec3(0.0f);
+    h.node = 0u;
+    h.brick_bit = 0u;
+    h.brick_mask = uvec2(0u);
+    h.iterations = 0u;
+
+    // Normalise the direction (scaled first so that no component overflows or underflows).
+    float m = max(max(abs(dir.x), abs(dir.y)), abs(dir.z));
+    if (!(m >= RK_FLT_MIN) || !(t_max >= 0.0f) || !(tree.root_size > 0.0f) || tree.depth == 0u ||
+        tree.depth > RK_SVO_MAX_DEPTH)
+        return h;
+    vec3 dn = dir / m;
+    float len = length(dn);  // in [1, sqrt(3)]
+    vec3 u = dn / len;
+    // t (caller) = t_cube * t_scale, where t_cube is the distance in root-size units.
+    float t_scale = min(tree.root_size / (m * len), RK_FLT_MAX);
+    float inv_size = 1.0f / tree.root_size;
+    vec3 o = (origin - tree.root_min) * inv_size + vec3(1.0f);
+
+    // Tiny components get a tiny value of the same sign (sign bit: -0 is negative).
+    if (abs(u.x) < RK_SVO_TRACE_DIR_EPS) u.x = (floatBitsToUint(u.x) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
+    if (abs(u.y) < RK_SVO_TRACE_DIR_EPS) u.y = (floatBitsToUint(u.y) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
+    if (abs(u.z) < RK_SVO_TRACE_DIR_EPS) u.z = (floatBitsToUint(u.z) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
+
+    // Clip to the root [1, 2]^3 and move the origin to the entry point.
+    vec3 inv_u = vec3(1.0f) / u;
+    vec3 ta = (vec3(1.0f) - o) * inv_u;
+    vec3 tb = (vec3(2.0f) - o) * inv_u;
+    vec3 tlo = min(ta, tb);
+    vec3 thi = max(ta, tb);
+    float t_enter = max(max(max(tlo.x, tlo.y), tlo.z), 0.0f);
+    float t_leave = min(min(thi.x, thi.y), thi.z);
+    float t_lim = min(t_max / t_scale, RK_FLT_MAX);
+    if (!(t_enter <= t_leave) || !(t_enter <= t_lim)) return h;
+    o = o + u * t_enter;
+    t_lim = t_lim - t_enter;
+
+    // Mirror to negative directions: t(x) = x * coef - bias on the mirrored axis.
+    vec3 coef = vec3(-1.0f) / abs(u);
+    vec3 bias = coef * o;
+    uint flip = 0u;  // bit a set: axis a mirrored (x -> 3 - x)
+    if (u.x > 0.0f) { flip |= 1u; bias.x = 3.0f * coef.x - bias.x; }
+    if (u.y > 0.0f) { flip |= 2u; bias.y = 3.0f * coef.y - bias.y; }
+    if (u.z > 0.0f) { flip |= 4u; bias.z = 3.0f * coef.z - bias.z; }
+
+    float t_min = max(max(max(2.0f * coef.x - bias.x, 2.0f * coef.y - bias.y), 2.0f * coef.z - bias.z), 0.0f);
+    float t_hi = min(min(min(coef.x - bias.x, coef.y - bias.y), coef.z - bias.z), t_lim);
+
+    uint b = rk_svo_brick_levels(tree.depth);
+    uint top = tree.depth - b;
+    uint leaf = min(tree.max_level, tree.depth);
+#if RK_SVO_TRACE_LOD
+    // Footprint in cube units: cone.x / root_size + cone.y * t_cube * root_size / root_size.
+    float lod_bias = max(cone.x, 0.0f) * inv_size;
+    float lod_slope = max(cone.y, 0.0f);
+#else
+    RK_UNUSED(cone);
+#endif
+
+    // The root (parent at level 0).
+    uint handle = 0u;
+    uint pdesc = 0u;
+    uvec2 bmask = uvec2(0u);
+    uint brick = 0u;
+    if (top > 0u) {
+        pdesc = RK_SVO_READ(buf, 0u);
+    } else {
+        uint w0 = rk_svo_word_of(0u, tree.desc_words);
+        bmask = uvec2(RK_SVO_READ(buf, w0), RK_SVO_READ(buf, w0 + 1u));
+    }
+    uint pmask = rk_svo_trace_child_mask_(0u, top, b, pdesc, bmask, 0u);
+    if (leaf == 0u) {
+        h.hit = pmask != 0u && t_min <= t_hi;
+        // Face: the axis whose entry plane is furthest along the ray.
+        vec3 te0 = 2.0f * coef - bias;
+        uint ax0 = te0.x >= te0.y && te0.x >= te0.z ? 0u : (te0.y >= te0.z ? 1u : 2u);
+        h.normal = vec3(ax0 == 0u ? -sign(u.x) : 0.0f, ax0 == 1u ? -sign(u.y) : 0.0f, ax0 == 2u ? -sign(u.z) : 0.0f);
+        h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
+        if (!h.hit) h.normal = vec3(0.0f);
+        return h;
+    }
+
+    uint stk_node[RK_SVO_TRACE_STACK];
+    float stk_tmax[RK_SVO_TRACE_STACK];
+
+    // The current cell: a child of the parent, `scale` = 23 - its level, size 2^(scale - 23),
+    // minimum corner `pos` (mirrored), child slot `idx` (mirrored; the format's index is idx ^ flip).
+    int scale = 22;
+    float size = 0.5f;
+    vec3 pos = vec3(1.0f);
+    uint idx = 0u;
+    if (1.5f * coef.x - bias.x > t_min) { idx |= 1u; pos.x = 1.5f; }
+    if (1.5f * coef.y - bias.y > t_min) { idx |= 2u; pos.y = 1.5f; }
+    if (1.5f * coef.z - bias.z > t_min) { idx |= 4u; pos.z = 1.5f; }
+
+    uint iter = 0u;
+    bool found = false;
+    for (; iter < RK_SVO_TRACE_MAX_ITER; ++iter) {
+        uint lc = uint(23 - scale);  // level of the current cell
+        vec3 tc = pos * coef - bias;  // exit planes of the current cell
+        float tc_max = min(min(tc.x, tc.y), tc.z);
+        uint c = idx ^ flip;
+        if (((pmask >> c) & 1u) != 0u && t_min <= t_hi) {
+            float tv_max = min(t_hi, tc_max);
+            if (t_min <= tv_max) {
+                bool stop = lc >= leaf;
+#if RK_SVO_TRACE_LOD
+                stop = stop || size <= lod_bias + lod_slope * (t_enter + t_min);
+#endif
+                if (stop) {
+                    found = true;
+                    break;
+                }
+                // Push: the child becomes the parent.
+                uint lp = lc - 1u;
+                stk_node[lp] = handle;
+                stk_tmax[lp] = t_hi;
+                if (lp < top) {
+                    uint far_word = rk_svo_is_far(pdesc) ? RK_SVO_READ(buf, handle + rk_svo_rel_ptr(pdesc)) : 0u;
+                    handle = rk_svo_first_child(handle, pdesc, far_word) + rk_svo_child_rank(pmask, c);
+                    if (lc < top) {
+                        pdesc = RK_SVO_READ(buf, handle);
+                    } else {
+                        uint w = rk_svo_word_of(handle, tree.desc_words);
+                        bmask = uvec2(RK_SVO_READ(buf, w), RK_SVO_READ(buf, w + 1u));
+                        brick = handle;
+                    }
+                } else {
+                    handle = c;  // a level-(depth-1) node inside the brick
+                }
+                pmask = rk_svo_trace_child_mask_(lc, top, b, pdesc, bmask, handle);
+                scale -= 1;
+                size *= 0.5f;
+                idx = 0u;
+                vec3 tmid = size * coef + tc;  // the child's centre planes
+                if (tmid.x > t_min) { idx |= 1u; pos.x += size; }
+                if (tmid.y > t_min) { idx |= 2u; pos.y += size; }
+                if (tmid.z > t_min) { idx |= 4u; pos.z += size; }
+                t_hi = tv_max;
+                continue;
+            }
+        }
+        // Advance to the next cell along the ray; every axis whose exit plane ties steps.
+        uint step = 0u;
+        if (tc.x <= tc_max) { step |= 1u; pos.x -= size; }
+        if (tc.y <= tc_max) { step |= 2u; pos.y -= size; }
+        if (tc.z <= tc_max) { step |= 4u; pos.z -= size; }
+        t_min = tc_max;
+        idx ^= step;
+        if ((idx & step) != 0u) {
+            // Left the parent: pop to the level of the highest differing address bit.
+            uint diff = 0u;
+            if ((step & 1u) != 0u) diff |= floatBitsToUint(pos.x) ^ floatBitsToUint(pos.x + size);
+            if ((step & 2u) != 0u) diff |= floatBitsToUint(pos.y) ^ floatBitsToUint(pos.y + size);
+            if ((step & 4u) != 0u) diff |= floatBitsToUint(pos.z) ^ floatBitsToUint(pos.z + size);
+            scale = findMSB(diff);
+            if (scale >= 23 || scale < 23 - int(leaf)) break;  // left the root
+            size = uintBitsToFloat(uint(scale + 104) << 23u);  // 2^(scale - 23)
+            uint lp = uint(22 - scale);
+            handle = stk_node[lp];
+            t_hi = stk_tmax[lp];
+            if (lp < top) pdesc = RK_SVO_READ(buf, handle);
+            pmask = rk_svo_trace_child_mask_(lp, top, b, pdesc, bmask, handle);
+            uint sx = floatBitsToUint(pos.x) >> uint(scale);
+            uint sy = floatBitsToUint(pos.y) >> uint(scale);
+            uint sz = floatBitsToUint(pos.z) >> uint(scale);
+            pos = vec3(uintBitsToFloat(sx << uint(scale)), uintBitsToFloat(sy << uint(scale)), uintBitsToFloat(sz << uint(scale)));
+            idx = (sx & 1u) | ((sz & 1u) << 2u) | ((sy & 1u) << 1u);
+        }
+    }
+    h.iterations = iter;
+    if (!found) return h;
+
+    // The hit: un-mirror the cell, find the entry face, locate the attributes.
+    uint lvl = uint(23 - scale);
+    uint c = idx ^ flip;
+    float px = (flip & 1u) != 0u ? 3.0f - size - pos.x : pos.x;
+    float py = (flip & 2u) != 0u ? 3.0f - size - pos.y : pos.y;
+    float pz = (flip & 4u) != 0u ? 3.0f - size - pos.z : pos.z;
+    uint sh = uint(scale);
+    h.cell = uvec3((floatBitsToUint(px) & 0x7FFFFFu) >> sh, (floatBitsToUint(py) & 0x7FFFFFu) >> sh,
+                   (floatBitsToUint(pz) & 0x7FFFFFu) >> sh);
+    vec3 te = (pos + vec3(size)) * coef - bias;  // entry planes of the cell
+    uint ax = te.x >= te.y && te.x >= te.z ? 0u : (te.y >= te.z ? 1u : 2u);
+    h.normal = vec3(ax == 0u ? -sign(u.x) : 0.0f, ax == 1u ? -sign(u.y) : 0.0f, ax == 2u ? -sign(u.z) : 0.0f);
+    h.hit = true;
+    h.level = lvl;
+    h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
+    uint lp = lvl - 1u;
+    if (lp < top) {
+        uint far_word = rk_svo_is_far(pdesc) ? RK_SVO_READ(buf, handle + rk_svo_rel_ptr(pdesc)) : 0u;
+        h.node = rk_svo_first_child(handle, pdesc, far_word) + rk_svo_child_rank(pmask, c);
+    } else {
+        h.node = brick;
+        h.brick_mask = bmask;
+        h.brick_bit = lvl == tree.depth && b == 2u ? (c | (handle << 3u)) : c;
+    }
+    return h;
+}
+
+/// rk_svo_trace_attr: the attribute index (into the color / normal / material streams) of what
+/// rk_svo_trace hit: the node's ordinal above the bricks, else brick_base[brick] plus its rank in
+/// the brick (rk_svo_brick_sub_attr, rk_svo_brick_voxel_attr). Domain: hit.hit is true.
+/// Cost: 1 word load inside a brick, none above.
+RK_INLINE uint rk_svo_trace_attr(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_hit hit)
+{
+    uint b = rk_svo_brick_levels(tree.depth);
+    uint top = tree.depth - b;
+    if (hit.level <= top) return hit.node;
+    uint base = RK_SVO_READ(buf, tree.brick_base_word + (hit.node - tree.desc_words));
+    if (hit.level == tree.depth) return rk_svo_brick_voxel_attr(base, hit.brick_mask, hit.brick_bit, b);
+    return rk_svo_brick_sub_attr(base, hit.brick_mask, hit.brick_bit);
+}
+
+#endif  // RK_SVO_TRAVERSE_GLSL
