@@ -164,8 +164,10 @@ inline raykit::SvoTree pack_cells(uint32_t depth, const std::vector<glm::uvec3>&
     }
     // Far-slot ordinals carry zero attributes.
     std::vector<char> is_slot(t.desc_words, 0);
+    // (A far slot follows its descriptor, so it is marked before the loop reaches it and skipped:
+    // its word is an offset, not a descriptor.)
     for (uint32_t w = 0; w < t.desc_words; ++w)
-        if (raykit::rk_svo_is_far(t.words[w])) is_slot[w + raykit::rk_svo_rel_ptr(t.words[w])] = 1;
+        if (!is_slot[w] && raykit::rk_svo_is_far(t.words[w])) is_slot[w + raykit::rk_svo_rel_ptr(t.words[w])] = 1;
     auto stream = [&](uint32_t bit, uint32_t salt, std::vector<uint32_t>& s) {
         if (!(o.attributes & bit)) return;
         s.resize(t.attr_count);

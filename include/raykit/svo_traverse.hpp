@@ -15,7 +15,7 @@
 #define RK_SVO_TRACE_LOD 0
 #endif
 #ifndef RK_SVO_TRACE_MAX_ITER
-#define RK_SVO_TRACE_MAX_ITER 8192u
+#define RK_SVO_TRACE_MAX_ITER 16384u
 #endif
 
 #define RK_SVO_TRACE_NS_CAT_(lod, it) svo_trace_lod##lod##_iter##it

@@ -25,7 +25,7 @@
 //   RK_SVO_TRACE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
 //       the ray's footprint cone.x + cone.y * distance (object units; rk_svo_pixel_cone gives the
 //       cone of a pixel). 0 = the cone is ignored and costs nothing.
-//   RK_SVO_TRACE_MAX_ITER (default 8192u): the hard bound on loop iterations. One iteration is one
+//   RK_SVO_TRACE_MAX_ITER (default 16384u): the hard bound on loop iterations. One iteration is one
 //       push, advance or pop; a ray never needs more than ~3 iterations per cell it visits at any
 //       level, which the tests measure (hit.iterations). A ray that reaches the bound reports no
 //       hit with iterations == RK_SVO_TRACE_MAX_ITER.
@@ -42,7 +42,7 @@
 #define RK_SVO_TRACE_LOD 0
 #endif
 #ifndef RK_SVO_TRACE_MAX_ITER
-#define RK_SVO_TRACE_MAX_ITER 8192u
+#define RK_SVO_TRACE_MAX_ITER 16384u
 #endif
 
 // Stack entries: one per parent level 0 .. RK_SVO_MAX_DEPTH - 1.
@@ -69,9 +69,9 @@ struct rk_svo_tree {
 ///      origin's own rounding when it is far away (see rk_svo_trace).
 ///   level, cell: the node's level (depth, or less at a level-of-detail stop or max_level) and
 ///      integer coordinates at that level.
-///   normal: unit axis vector of the face the ray entered through, facing the ray (where the ray
-///      enters through an edge or a corner, the axis entered last, lowest axis on an exact tie);
-///      for an origin inside the node, the face behind the origin.
+///   normal: unit axis vector of the face the ray entered through, facing the ray (through an edge
+///      or a corner: the face crossed last, the steepest one on an exact tie); for an origin inside
+///      the node, the face behind the origin.
 ///   node, brick_bit, brick_mask: where the node's attributes are (rk_svo_trace_attr): the ordinal
 ///      of the descriptor, or of the brick holding the node; inside a brick, the sub-node index
 ///      (level depth-1) or mask bit (level depth), and the brick's mask.
@@ -105,6 +105,18 @@ RK_INLINE uint rk_svo_trace_child_mask_(uint lp, uint top, uint b, uint pdesc, u
     if (lp == top) return b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
     uint w = handle < 4u ? bmask.x : bmask.y;
     return (w >> (8u * (handle & 3u))) & 0xFFu;
+}
+
+/// rk_svo_trace_entry_normal_: internal. The face normal of the entry plane that the ray crosses
+/// last (largest te); on an exact tie (an edge or corner, or a ray lying in a face plane) the axis
+/// the ray crosses most steeply (largest |u|), never one it runs parallel to.
+RK_INLINE vec3 rk_svo_trace_entry_normal_(vec3 te, vec3 u)
+{
+    uint ax = (te.y > te.x || (te.y == te.x && abs(u.y) > abs(u.x))) ? 1u : 0u;
+    float tb = ax == 0u ? te.x : te.y;
+    float ub = ax == 0u ? abs(u.x) : abs(u.y);
+    if (te.z > tb || (te.z == tb && abs(u.z) > ub)) ax = 2u;
+    return vec3(ax == 0u ? -sign(u.x) : 0.0f, ax == 1u ? -sign(u.y) : 0.0f, ax == 2u ? -sign(u.z) : 0.0f);
 }
 
 /// rk_svo_trace: casts the ray origin + t * dir, t in [0, t_max], through `tree` and returns the
@@ -195,12 +207,14 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
         bmask = uvec2(RK_SVO_READ(buf, w0), RK_SVO_READ(buf, w0 + 1u));
     }
     uint pmask = rk_svo_trace_child_mask_(0u, top, b, pdesc, bmask, 0u);
-    if (leaf == 0u) {
+    bool root_stop = leaf == 0u;
+#if RK_SVO_TRACE_LOD
+    root_stop = root_stop || 1.0f <= lod_bias + lod_slope * (t_enter + t_min);
+#endif
+    if (root_stop) {
         h.hit = pmask != 0u && t_min <= t_hi;
         // Face: the axis whose entry plane is furthest along the ray.
-        vec3 te0 = 2.0f * coef - bias;
-        uint ax0 = te0.x >= te0.y && te0.x >= te0.z ? 0u : (te0.y >= te0.z ? 1u : 2u);
-        h.normal = vec3(ax0 == 0u ? -sign(u.x) : 0.0f, ax0 == 1u ? -sign(u.y) : 0.0f, ax0 == 2u ? -sign(u.z) : 0.0f);
+        h.normal = rk_svo_trace_entry_normal_(2.0f * coef - bias, u);
         h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
         if (!h.hit) h.normal = vec3(0.0f);
         return h;
@@ -271,7 +285,9 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
         if (tc.x <= tc_max) { step |= 1u; pos.x -= size; }
         if (tc.y <= tc_max) { step |= 2u; pos.y -= size; }
         if (tc.z <= tc_max) { step |= 4u; pos.z -= size; }
-        t_min = tc_max;
+        // Never backwards: for an axis almost parallel to the ray, plane distances carry rounding
+        // of ~2^-22 / |dir| (a position error of ~2^-22), which can put tc_max below t_min.
+        t_min = max(t_min, tc_max);
         idx ^= step;
         if ((idx & step) != 0u) {
             // Left the parent: pop to the level of the highest differing address bit.
@@ -306,9 +322,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     uint sh = uint(scale);
     h.cell = uvec3((floatBitsToUint(px) & 0x7FFFFFu) >> sh, (floatBitsToUint(py) & 0x7FFFFFu) >> sh,
                    (floatBitsToUint(pz) & 0x7FFFFFu) >> sh);
-    vec3 te = (pos + vec3(size)) * coef - bias;  // entry planes of the cell
-    uint ax = te.x >= te.y && te.x >= te.z ? 0u : (te.y >= te.z ? 1u : 2u);
-    h.normal = vec3(ax == 0u ? -sign(u.x) : 0.0f, ax == 1u ? -sign(u.y) : 0.0f, ax == 2u ? -sign(u.z) : 0.0f);
+    h.normal = rk_svo_trace_entry_normal_((pos + vec3(size)) * coef - bias, u);  // entry planes of the cell
     h.hit = true;
     h.level = lvl;
     h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
