@@ -1,0 +1,249 @@
+// rk_svo_gl.hpp — a sample integration of raykit's octree ray casting into an OpenGL 4.5 frame
+// (copy and adapt): SvoGlObject uploads a packed tree (geometry words and attribute streams as
+// SSBOs) and draws it with a full-screen pass that casts one ray per pixel through
+// svo_traverse.glsl, shades the hit and writes a depth value compatible with the rasterised
+// geometry around it (svo_hybrid.glsl), so voxels and triangles occlude each other both ways with
+// the ordinary depth test. MeshGl draws a triangle mesh with the same lighting, for the hybrid demo
+// and tests.
+//
+// Frame recipe (what samples/svo_demo and tests/gpu/parity_svo_hybrid.cpp do):
+//   1. draw the rasterised geometry (depth test on, depth writes on);
+//   2. optionally copy the depth buffer to a texture (glCopyImageSubData / glBlitFramebuffer) and
+//      pass it to draw(): each ray then stops at the depth already there (rk_svo_depth_to_t);
+//   3. draw the voxel objects (depth test on, same compare function as the geometry).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "raykit/shader_source.hpp"
+#include "raykit/svo_format.hpp"
+#include "raykit/svo_hybrid.hpp"
+#include "rk_gl.hpp"
+
+namespace rkgl {
+
+/// What a voxel pass computes per pixel (fragment shader uniforms, besides the matrices).
+struct SvoDrawParams {
+    glm::vec3 light_dir_world{0.4f, 0.8f, 0.45f};  ///< towards the light
+    glm::vec3 ambient{0.18f};
+    float lod_pixels = 0.0f;       ///< > 0: stop at nodes this many pixels wide (needs lod build)
+    float fov_y = 1.0f;            ///< camera field of view, for the LOD cone
+    uint32_t max_level = ~0u;      ///< deepest level to descend to
+    GLuint depth_texture = 0;      ///< copy of the depth buffer for early termination (0: none)
+    bool show_iterations = false;  ///< colour = iterations / 256 (a cost heat map)
+};
+
+/// The fragment shader of the voxel pass. RK_SVO_TRACE_LOD is set per program.
+inline std::string svo_fragment_source()
+{
+    return R"(#version 450 core
+#extension GL_GOOGLE_include_directive : require
+#include "raykit/svo_traverse.glsl"
+#include "raykit/svo_hybrid.glsl"
+layout(std430, binding = 1) readonly buffer RkColors { uint rk_colors[]; };
+layout(std430, binding = 2) readonly buffer RkNormals { uint rk_normals[]; };
+layout(location = 0) uniform mat4 u_obj_to_clip;
+layout(location = 1) uniform mat4 u_clip_to_obj;
+layout(location = 2) uniform vec4 u_depth;      // z_near_ndc, depth_range.x, depth_range.y, use depth texture
+layout(location = 3) uniform uvec4 u_tree;      // depth, max_level, desc_words, brick_base_word
+layout(location = 4) uniform vec4 u_root;       // root_min, root_size
+layout(location = 5) uniform vec2 u_cone;
+layout(location = 6) uniform vec3 u_light_obj;  // towards the light, object space, unit
+layout(location = 7) uniform vec4 u_viewport;   // x, y, width, height
+layout(location = 8) uniform uvec2 u_streams;   // has colours, has normals
+layout(location = 9) uniform vec4 u_ambient;    // rgb, show iterations
+layout(binding = 0) uniform sampler2D u_depth_tex;
+layout(location = 0) out vec4 frag;
+void main()
+{
+    vec2 ndc = (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
+    vec3 o, d;
+    rk_svo_pixel_ray(u_clip_to_obj, ndc, u_depth.x, o, d);
+    float t_max = 3.402823e38;
+    if (u_depth.w > 0.5)
+        t_max = rk_svo_depth_to_t(u_clip_to_obj, ndc, texelFetch(u_depth_tex, ivec2(gl_FragCoord.xy), 0).x,
+                                  vec2(u_depth.y, u_depth.z), o, d);
+    rk_svo_tree tree;
+    tree.depth = u_tree.x; tree.max_level = u_tree.y; tree.desc_words = u_tree.z; tree.brick_base_word = u_tree.w;
+    tree.root_min = u_root.xyz; tree.root_size = u_root.w;
+    rk_svo_trace_hit h = rk_svo_trace(0u, tree, o, d, t_max, u_cone);
+    if (u_ambient.w > 0.5) {
+        frag = vec4(vec3(float(h.iterations) / 256.0), 1.0);
+        gl_FragDepth = h.hit ? rk_svo_window_depth(u_obj_to_clip, o + d * h.t, vec2(u_depth.y, u_depth.z)) : gl_FragCoord.z;
+        return;
+    }
+    if (!h.hit) discard;
+    gl_FragDepth = rk_svo_window_depth(u_obj_to_clip, o + d * h.t, vec2(u_depth.y, u_depth.z));
+    uint a = rk_svo_trace_attr(0u, tree, h);
+    vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
+    vec3 n = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[a]) : h.normal;
+    if (dot(n, d) > 0.0) n = -n;
+    float diff = max(dot(n, u_light_obj), 0.0);
+    frag = vec4(albedo * (u_ambient.rgb + (1.0 - u_ambient.rgb) * diff), 1.0);
+}
+)";
+}
+
+/// A full-screen triangle (no vertex buffer).
+inline const char* fullscreen_vertex_source()
+{
+    return R"(#version 450 core
+void main()
+{
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+}
+
+/// A packed octree on the GPU and its draw call.
+class SvoGlObject {
+public:
+    SvoGlObject(const raykit::SvoTree& tree, const std::string& shader_dir) : tree_(tree)
+    {
+        const std::vector<uint32_t> words = tree.gpu_words();
+        words_ = make_buffer(words.size() * 4, words.data());
+        const uint32_t zero = 0;
+        colors_ = tree.color.empty() ? make_buffer(4, &zero) : make_buffer(tree.color.size() * 4, tree.color.data());
+        normals_ = tree.normal.empty() ? make_buffer(4, &zero) : make_buffer(tree.normal.size() * 4, tree.normal.data());
+        for (int lod = 0; lod < 2; ++lod) {
+            std::string fs = raykit::inject_shader_defines(svo_fragment_source(), {{"RK_SVO_TRACE_LOD", lod ? "1" : "0"}});
+            fs = raykit::resolve_shader_includes(fs, "svo_pass.frag", shader_dir, {shader_dir});
+            prog_[lod] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
+        }
+        glCreateVertexArrays(1, &vao_);
+    }
+    ~SvoGlObject()
+    {
+        GLuint b[3] = {words_, colors_, normals_};
+        glDeleteBuffers(3, b);
+        glDeleteProgram(prog_[0]);
+        glDeleteProgram(prog_[1]);
+        glDeleteVertexArrays(1, &vao_);
+    }
+    SvoGlObject(const SvoGlObject&) = delete;
+    SvoGlObject& operator=(const SvoGlObject&) = delete;
+
+    /// Draws the object placed by `model` into the bound framebuffer's viewport (depth test and
+    /// function as set by the caller).
+    void draw(const glm::mat4& model, const glm::mat4& view, const glm::mat4& proj, raykit::SvoDepthConvention conv,
+              const SvoDrawParams& p) const
+    {
+        const raykit::SvoHybridView hv = raykit::svo_hybrid_view(model, view, proj, conv);
+        GLint vp[4];
+        glGetIntegerv(GL_VIEWPORT, vp);
+        const bool lod = p.lod_pixels > 0.0f;
+        const GLuint prog = prog_[lod ? 1 : 0];
+        glUseProgram(prog);
+        glUniformMatrix4fv(0, 1, GL_FALSE, &hv.obj_to_clip[0][0]);
+        glUniformMatrix4fv(1, 1, GL_FALSE, &hv.clip_to_obj[0][0]);
+        glUniform4f(2, hv.z_near_ndc, hv.depth_range.x, hv.depth_range.y, p.depth_texture ? 1.0f : 0.0f);
+        const uint32_t ml = p.max_level < tree_.depth ? p.max_level : tree_.depth;
+        glUniform4ui(3, tree_.depth, ml, tree_.desc_words, tree_.gpu_brick_base_word());
+        glUniform4f(4, tree_.root_min.x, tree_.root_min.y, tree_.root_min.z, tree_.root_size);
+        // The cone is in object units: the object's scale changes distances along the ray only
+        // through the model matrix, which the ray set-up already undid (t is in object units).
+        const glm::vec2 cone =
+            lod ? raykit::rk_svo_pixel_cone(p.fov_y, float(vp[3]), p.lod_pixels) / model_scale(model) : glm::vec2(0.0f);
+        glUniform2f(5, cone.x, cone.y);
+        const glm::vec3 l = glm::normalize(glm::vec3(glm::inverse(model) * glm::vec4(p.light_dir_world, 0.0f)));
+        glUniform3f(6, l.x, l.y, l.z);
+        glUniform4f(7, float(vp[0]), float(vp[1]), float(vp[2]), float(vp[3]));
+        glUniform2ui(8, tree_.color.empty() ? 0u : 1u, tree_.normal.empty() ? 0u : 1u);
+        glUniform4f(9, p.ambient.x, p.ambient.y, p.ambient.z, p.show_iterations ? 1.0f : 0.0f);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, words_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, colors_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normals_);
+        if (p.depth_texture) glBindTextureUnit(0, p.depth_texture);
+        glBindVertexArray(vao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    const raykit::SvoTree& tree() const { return tree_; }
+
+private:
+    static float model_scale(const glm::mat4& m)
+    {
+        // Object units per world unit along the ray are what the cone needs; a uniform scale is
+        // assumed (the largest axis scale otherwise: a conservative cone).
+        const float s = std::max(glm::length(glm::vec3(m[0])), std::max(glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))));
+        return s > 0.0f ? s : 1.0f;
+    }
+
+    const raykit::SvoTree& tree_;
+    GLuint words_ = 0, colors_ = 0, normals_ = 0, vao_ = 0;
+    GLuint prog_[2] = {0, 0};
+};
+
+/// A lit triangle mesh (positions + normals, flat colour) for the rasterised side of the frame.
+class MeshGl {
+public:
+    MeshGl(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals, const std::vector<uint32_t>& indices)
+        : count_(GLsizei(indices.size()))
+    {
+        std::vector<float> v;
+        v.reserve(positions.size() * 6);
+        for (size_t i = 0; i < positions.size(); ++i) {
+            const glm::vec3 n = i < normals.size() ? normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+            v.insert(v.end(), {positions[i].x, positions[i].y, positions[i].z, n.x, n.y, n.z});
+        }
+        vbo_ = make_buffer(v.size() * 4, v.data());
+        ibo_ = make_buffer(indices.size() * 4, indices.data());
+        glCreateVertexArrays(1, &vao_);
+        glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 24);
+        glVertexArrayElementBuffer(vao_, ibo_);
+        glEnableVertexArrayAttrib(vao_, 0);
+        glEnableVertexArrayAttrib(vao_, 1);
+        glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribFormat(vao_, 1, 3, GL_FLOAT, GL_FALSE, 12);
+        glVertexArrayAttribBinding(vao_, 0, 0);
+        glVertexArrayAttribBinding(vao_, 1, 0);
+        prog_ = build_program({{GL_VERTEX_SHADER, R"(#version 450 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_nrm;
+layout(location = 0) uniform mat4 u_mvp;
+layout(location = 1) uniform mat4 u_model;
+out vec3 v_nrm;
+void main() { gl_Position = u_mvp * vec4(a_pos, 1.0); v_nrm = mat3(u_model) * a_nrm; }
+)"},
+                               {GL_FRAGMENT_SHADER, R"(#version 450 core
+in vec3 v_nrm;
+layout(location = 2) uniform vec3 u_color;
+layout(location = 3) uniform vec3 u_light;
+layout(location = 0) out vec4 frag;
+void main() { vec3 n = normalize(v_nrm); frag = vec4(u_color * (0.18 + 0.82 * abs(dot(n, u_light))), 1.0); }
+)"}});
+    }
+    ~MeshGl()
+    {
+        GLuint b[2] = {vbo_, ibo_};
+        glDeleteBuffers(2, b);
+        glDeleteVertexArrays(1, &vao_);
+        glDeleteProgram(prog_);
+    }
+    MeshGl(const MeshGl&) = delete;
+    MeshGl& operator=(const MeshGl&) = delete;
+
+    /// Draws with mvp = proj * view * model computed in double (as svo_hybrid_view does, so both
+    /// sides of the frame project with the same float matrix).
+    void draw(const glm::mat4& model, const glm::mat4& view, const glm::mat4& proj, glm::vec3 color, glm::vec3 light_world) const
+    {
+        const glm::mat4 mvp = glm::mat4(glm::dmat4(proj) * glm::dmat4(view) * glm::dmat4(model));
+        glUseProgram(prog_);
+        glUniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
+        glUniformMatrix4fv(1, 1, GL_FALSE, &model[0][0]);
+        glUniform3f(2, color.x, color.y, color.z);
+        const glm::vec3 l = glm::normalize(light_world);
+        glUniform3f(3, l.x, l.y, l.z);
+        glBindVertexArray(vao_);
+        glDrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
+    }
+
+private:
+    GLsizei count_;
+    GLuint vbo_ = 0, ibo_ = 0, vao_ = 0, prog_ = 0;
+};
+
+}  // namespace rkgl

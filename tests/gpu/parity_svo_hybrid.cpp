@@ -1,0 +1,236 @@
+// Hybrid rendering on the driver (svo_hybrid.glsl through samples/common/rk_svo_gl.hpp): for the
+// OpenGL [-1, 1], zero-to-one (Vulkan's) and reversed-Z conventions,
+//   - a voxel face and a rasterised quad in the same plane write the same depth (within a few
+//     2^-24), pixel for pixel;
+//   - occlusion is right both ways: a rasterised plane cutting through a voxel block, drawn before
+//     or after it, shows in exactly the pixels where the float64 reference (exact pixel ray against
+//     the plane, CPU traversal for the voxels) says it is nearer, and both draw orders give the
+//     same image;
+//   - early termination against a copy of the depth buffer (rk_svo_depth_to_t as t_max) changes
+//     no pixel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "parity.hpp"
+#include "raykit/svo_traverse.hpp"
+#include "rk_svo_gl.hpp"
+#include "svo_test_pack.hpp"
+
+using namespace raykit;
+
+namespace {
+
+constexpr int W = 160, H = 120;
+
+/// A colour + 32F depth framebuffer with a second depth texture for copies.
+struct HybridTarget {
+    GLuint fbo = 0, color = 0, depth = 0, depth_copy = 0;
+    HybridTarget()
+    {
+        glCreateTextures(GL_TEXTURE_2D, 1, &color);
+        glTextureStorage2D(color, 1, GL_RGBA8, W, H);
+        glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+        glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, W, H);
+        glCreateTextures(GL_TEXTURE_2D, 1, &depth_copy);
+        glTextureStorage2D(depth_copy, 1, GL_DEPTH_COMPONENT32F, W, H);
+        glTextureParameteri(depth_copy, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(depth_copy, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, W, H);
+    }
+    ~HybridTarget()
+    {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDeleteFramebuffers(1, &fbo);
+        GLuint t[3] = {color, depth, depth_copy};
+        glDeleteTextures(3, t);
+    }
+    void clear(bool reversed) const
+    {
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClearDepth(reversed ? 0.0 : 1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+    std::vector<float> read_depth() const
+    {
+        std::vector<float> d(size_t(W) * H);
+        glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
+        return d;
+    }
+    std::vector<uint32_t> read_color() const
+    {
+        std::vector<uint32_t> c(size_t(W) * H);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, c.data());
+        return c;
+    }
+    void copy_depth() const { glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, depth_copy, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1); }
+};
+
+struct Convention {
+    SvoDepthConvention conv;
+    const char* name;
+};
+
+void set_convention(SvoDepthConvention c)
+{
+    const bool zo = c != SvoDepthConvention::gl_minus_one_to_one;
+    glClipControl(GL_LOWER_LEFT, zo ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(c == SvoDepthConvention::reversed_zero_to_one ? GL_GREATER : GL_LESS);
+    glDepthMask(GL_TRUE);
+}
+
+/// A solid block of voxels [lo, hi) at depth 4 in the root [-1, 1]^3, with colour hashes.
+SvoTree make_block(int lo, int hi)
+{
+    std::vector<glm::uvec3> cells;
+    for (int z = lo; z < hi; ++z)
+        for (int y = lo; y < hi; ++y)
+            for (int x = lo; x < hi; ++x) cells.push_back(glm::uvec3(uint32_t(x), uint32_t(y), uint32_t(z)));
+    svotest::PackOptions po;
+    po.attributes = RK_SVO_ATTR_COLOR;
+    po.root_min = glm::vec3(-1.0f);
+    po.root_size = 2.0f;
+    return svotest::pack_cells(4, cells, po);
+}
+
+}  // namespace
+
+TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
+{
+    const SvoTree tree = make_block(4, 12);  // the block [-0.5, 0.5]^3
+    rkgl::SvoGlObject obj(tree, parity::shader_dir());
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, -0.2f, 0.1f)) *
+                            glm::rotate(glm::mat4(1.0f), 0.5f, glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f))) *
+                            glm::scale(glm::mat4(1.0f), glm::vec3(1.7f));
+    const glm::mat4 view = glm::lookAt(glm::vec3(-2.2f, 1.4f, 3.1f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    // The block's face x = -0.5 as a quad (object space), and a plane slicing the block.
+    const std::vector<glm::vec3> face = {{-0.5f, -0.5f, -0.5f}, {-0.5f, 0.5f, -0.5f}, {-0.5f, 0.5f, 0.5f}, {-0.5f, -0.5f, 0.5f}};
+    const std::vector<glm::vec3> face_n(4, glm::vec3(-1.0f, 0.0f, 0.0f));
+    const glm::vec3 pn = glm::normalize(glm::vec3(0.6f, -0.3f, 1.0f));  // slicing plane through the centre
+    const glm::vec3 pu = glm::normalize(glm::cross(pn, glm::vec3(0.0f, 1.0f, 0.0f))), pv = glm::cross(pn, pu);
+    const std::vector<glm::vec3> slice = {-2.0f * pu - 2.0f * pv, 2.0f * pu - 2.0f * pv, 2.0f * pu + 2.0f * pv, -2.0f * pu + 2.0f * pv};
+    const std::vector<glm::vec3> slice_n(4, pn);
+    const std::vector<uint32_t> quad = {0, 1, 2, 0, 2, 3};
+    rkgl::MeshGl face_mesh(face, face_n, quad), slice_mesh(slice, slice_n, quad);
+    const std::vector<uint32_t> words = tree.gpu_words();
+    const rk_svo_tree tr = svo_trace_tree(tree);
+
+    const Convention conventions[] = {{SvoDepthConvention::gl_minus_one_to_one, "OpenGL [-1,1]"},
+                            {SvoDepthConvention::zero_to_one, "zero-to-one"},
+                            {SvoDepthConvention::reversed_zero_to_one, "reversed-Z"}};
+    for (const Convention& s : conventions) {
+        const bool rev = s.conv == SvoDepthConvention::reversed_zero_to_one;
+        const glm::mat4 proj = svo_perspective(0.9f, float(W) / float(H), 0.5f, rev ? INFINITY : 30.0f, s.conv);
+        HybridTarget target;
+        set_convention(s.conv);
+        rkgl::SvoDrawParams params;
+
+        // 1. Same depth for the voxel face and the coplanar quad.
+        target.clear(rev);
+        obj.draw(model, view, proj, s.conv, params);
+        const std::vector<float> dv = target.read_depth();
+        target.clear(rev);
+        face_mesh.draw(model, view, proj, glm::vec3(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+        const std::vector<float> dr = target.read_depth();
+        const float cleared = rev ? 0.0f : 1.0f;
+        long compared = 0;
+        double worst = 0.0;
+        for (int y = 1; y < H - 1; ++y)
+            for (int x = 1; x < W - 1; ++x) {
+                bool inner = true;  // the quad covers the 3x3 neighbourhood: not an edge pixel
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) inner = inner && dr[size_t((y + dy) * W + x + dx)] != cleared;
+                if (!inner) continue;
+                const size_t i = size_t(y * W + x);
+                ASSERT_NE(dv[i], cleared) << s.name << ": the voxel block is missing at " << x << "," << y;
+                worst = std::max(worst, double(std::abs(dv[i] - dr[i])) / 0x1p-24);
+                ++compared;
+            }
+        std::printf("[hybrid] %-14s voxel face vs coplanar triangle: %ld pixels, depth differs by at most %.1f x 2^-24\n",
+                    s.name, compared, worst);
+        EXPECT_GT(compared, 500);
+        EXPECT_LE(worst, 16.0) << s.name;
+
+        // 2. Occlusion both ways, in both draw orders, against the float64 reference.
+        const SvoHybridView hv = svo_hybrid_view(model, view, proj, s.conv);
+        const glm::dmat4 M = glm::dmat4(proj) * glm::dmat4(view) * glm::dmat4(model);
+        std::vector<uint32_t> images[3];
+        for (int order = 0; order < 3; ++order) {
+            target.clear(rev);
+            const glm::vec3 red(1.0f, 0.0f, 0.0f);
+            if (order == 0) {
+                slice_mesh.draw(model, view, proj, red, pn);
+                obj.draw(model, view, proj, s.conv, params);
+            } else if (order == 1) {
+                obj.draw(model, view, proj, s.conv, params);
+                slice_mesh.draw(model, view, proj, red, pn);
+            } else {
+                // Raster first, then voxels stopping at the copied depth (early termination).
+                slice_mesh.draw(model, view, proj, red, pn);
+                target.copy_depth();
+                rkgl::SvoDrawParams early = params;
+                early.depth_texture = target.depth_copy;
+                obj.draw(model, view, proj, s.conv, early);
+            }
+            images[order] = target.read_color();
+        }
+        long checked = 0, wrong = 0, differ_order = 0, differ_early = 0, plane_wins = 0, voxels_win = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y * W + x);
+                differ_order += images[0][i] != images[1][i];
+                differ_early += images[0][i] != images[2][i];
+                // Reference: the exact pixel ray (pixel centre) against the plane and the voxels.
+                const glm::vec2 ndc((float(x) + 0.5f) / W * 2.0f - 1.0f, (float(y) + 0.5f) / H * 2.0f - 1.0f);
+                glm::vec3 o, d;
+                rk_svo_pixel_ray(hv.clip_to_obj, ndc, hv.z_near_ndc, o, d);
+                const rk_svo_trace_hit h = rk_svo_trace(words.data(), tr, o, d, 3.0e38f, glm::vec2(0.0f));
+                const double denom = glm::dot(glm::dvec3(pn), glm::dvec3(d));
+                const double tp = std::abs(denom) > 1e-12 ? -glm::dot(glm::dvec3(pn), glm::dvec3(o)) / denom : -1.0;
+                const glm::dvec3 pp = glm::dvec3(o) + tp * glm::dvec3(d);
+                const bool plane_hit = tp > 0.0 && std::abs(glm::dot(pp, glm::dvec3(pu))) < 2.0 && std::abs(glm::dot(pp, glm::dvec3(pv))) < 2.0;
+                auto depth_of = [&](glm::dvec3 p) {
+                    const glm::dvec4 c = M * glm::dvec4(p, 1.0);
+                    return c.z / c.w;
+                };
+                double dvox = 0.0, dpl = 0.0;
+                if (h.hit) dvox = depth_of(glm::dvec3(o) + double(h.t) * glm::dvec3(d));
+                if (plane_hit) dpl = depth_of(pp);
+                if (h.hit && plane_hit && std::abs(dvox - dpl) < 1e-5) continue;  // a tie: either may win
+                const bool expect_red = plane_hit && (!h.hit || (rev ? dpl > dvox : dpl < dvox));
+                const bool expect_empty = !plane_hit && !h.hit;
+                plane_wins += expect_red && h.hit;
+                voxels_win += !expect_red && plane_hit;
+                const uint32_t c = images[0][i];
+                const bool is_red = (c & 0xFFu) > 20u && ((c >> 8) & 0xFFu) == 0u && ((c >> 16) & 0xFFu) == 0u;
+                const bool is_empty = (c >> 24) == 0u;
+                ++checked;
+                if (expect_empty ? !is_empty : (expect_red != is_red || is_empty)) {
+                    if (wrong < 3)
+                        ADD_FAILURE() << s.name << " pixel " << x << "," << y << ": colour " << std::hex << c << std::dec
+                                      << " expected " << (expect_empty ? "nothing" : expect_red ? "the plane" : "voxels");
+                    ++wrong;
+                }
+            }
+        std::printf("[hybrid] %-14s occlusion: %ld pixels checked (plane in front of voxels in %ld, behind in %ld), "
+                    "%ld wrong; draw orders differ in %ld, early termination changes %ld\n",
+                    s.name, checked, plane_wins, voxels_win, wrong, differ_order, differ_early);
+        EXPECT_GT(plane_wins, 200);
+        EXPECT_GT(voxels_win, 200);
+        EXPECT_EQ(wrong, 0) << s.name;
+        EXPECT_EQ(differ_order, 0) << s.name;
+        EXPECT_EQ(differ_early, 0) << s.name;
+    }
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+}
