@@ -4,11 +4,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build --target fresnel_curves tonemap_gallery city -j"$(nproc)"
+cmake --build build --target fresnel_curves tonemap_gallery city svo_demo -j"$(nproc)"
 mkdir -p out
 ./build/samples/fresnel_curves out/fresnel_curves.png
 ./build/samples/tonemap_gallery out/tonemap_gallery.png
 # The city demo: five named views at 1280x720 (out/city_<view>.png); ./build/samples/city --window
 # flies through it when a display is available.
 ./build/samples/city out
+# The voxel demo: voxelised meshes ray cast among rasterised cubes (out/svo_hybrid.png) and its
+# level-of-detail view (out/svo_lod.png); --window animates it when a display is available.
+./build/samples/svo_demo out
 echo "demo: wrote $(ls out/*.png | tr '\n' ' ')"

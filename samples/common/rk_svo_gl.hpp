@@ -13,6 +13,7 @@
 //   3. draw the voxel objects (depth test on, same compare function as the geometry).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "raykit/shader_source.hpp"
 #include "raykit/svo_format.hpp"
 #include "raykit/svo_hybrid.hpp"
+#include "raykit/svo_traverse.hpp"
 #include "rk_gl.hpp"
 
 namespace rkgl {
@@ -32,7 +34,7 @@ struct SvoDrawParams {
     float fov_y = 1.0f;            ///< camera field of view, for the LOD cone
     uint32_t max_level = ~0u;      ///< deepest level to descend to
     GLuint depth_texture = 0;      ///< copy of the depth buffer for early termination (0: none)
-    bool show_iterations = false;  ///< colour = iterations / 256 (a cost heat map)
+    bool show_iterations = false;  ///< colour = iterations / 64 (a cost heat map; misses included)
 };
 
 /// The fragment shader of the voxel pass. RK_SVO_TRACE_LOD is set per program.
@@ -70,7 +72,7 @@ void main()
     tree.root_min = u_root.xyz; tree.root_size = u_root.w;
     rk_svo_trace_hit h = rk_svo_trace(0u, tree, o, d, t_max, u_cone);
     if (u_ambient.w > 0.5) {
-        frag = vec4(vec3(float(h.iterations) / 256.0), 1.0);
+        frag = vec4(vec3(float(h.iterations) / 64.0), 1.0);
         gl_FragDepth = h.hit ? rk_svo_window_depth(u_obj_to_clip, o + d * h.t, vec2(u_depth.y, u_depth.z)) : gl_FragCoord.z;
         return;
     }
