@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Builds and runs raykit_bench_trace (bench/trace/): CPU primary-ray throughput (Mrays/s, 1 and 2
+# threads, 512 x 512 rays) of the ray tracers on the same meshes and cameras, Embree on the source
+# triangles and OpenVDB's level-set ray intersector at depths 8..10 (8..12 with
+# RAYKIT_BENCH_TRACE_FULL=1) next to raykit's own rows. The peers are bench-only Debian packages,
+# installed here when missing (users and CI never need them: without them the executable has no
+# peer rows and the bench.trace.smoke test is not registered). libboost-iostreams-dev is needed by
+# OpenVDB's CMake module and headers, though Debian's libopenvdb-dev does not depend on it.
+# Writes the JSON to <build>/bench_trace.json; the console keeps the readable table.
+# Usage: bash scripts/bench_trace.sh [raykit_bench_trace arguments...]
+#   e.g. --benchmark_filter=uv_sphere_5856, or --smoke for the quick check. Environment:
+#   RAYKIT_BENCH_BUILD_DIR (default build), RAYKIT_BENCH_TRACE_FULL=1 (depths 11 and 12 too: minutes
+#   and gigabytes), RAYKIT_BENCH_TRACE_MAX_BYTES (level sets estimated above it are skipped).
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+PKGS=(libembree-dev libopenvdb-dev libboost-iostreams-dev)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "bench_trace: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build="${RAYKIT_BENCH_BUILD_DIR:-build}"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON -DRAYKIT_BUILD_BENCH_TRACE=ON
+cmake --build "$build" --target raykit_bench_trace -j2
+
+exe="$build/bench/trace/raykit_bench_trace"
+rows="$("$exe" --benchmark_list_tests)"
+for peer in embree openvdb; do
+  grep -q "/$peer/" <<<"$rows" || { echo "bench_trace: $exe was built without $peer (see the cmake output above)" >&2; exit 1; }
+done
+
+"$exe" --benchmark_out_format=json --benchmark_out="$build/bench_trace.json" "$@"
+echo "bench_trace: results in $build/bench_trace.json (load average after the run: $(cut -d' ' -f1-3 /proc/loadavg))"
