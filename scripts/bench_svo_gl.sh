@@ -36,7 +36,9 @@ ratio to it. *lodN* stops at nodes no wider than N pixels. The LOD error is the 
 difference over RGB to the full-detail image of the same tree (8-bit levels) and the share of
 pixels differing by more than 8 levels.
 
-On a software rasteriser (llvmpipe) the milliseconds are CPU time of the driver: read the ratios.
+Times are GL_TIME_ELAPSED queries on a GPU and, on a software rasteriser (llvmpipe, whose queries
+miss its deferred rasterisation), the wall clock between two glFinish calls: there the milliseconds
+are CPU time of the driver, so read the ratios.
 Gritzner ("3D graphics rendering using a polygon-voxel-hybrid approach") reports 21.6 ms at
 1280x720, depth 11, on a 2013 GPU (Table 7.6), without LOD.
 
