@@ -10,10 +10,11 @@ cmake --build build --target bench_svo_gl -j2
 tmp="$(mktemp -d)"
 build/bench/bench_svo_gl --md "$tmp/table.md" --png docs/img/bench_svo_gl_lod.png "$@" | tee "$tmp/log.txt"
 renderer="$(head -1 "$tmp/log.txt" | sed 's/^bench_svo_gl: //')"
+renderer_short="$(echo "$renderer" | cut -d' ' -f1)"
 gnuplot <<GP
 set terminal pngcairo size 900,520 font "DejaVu Sans,11"
 set output "docs/img/bench_svo_gl_tradeoff.png"
-set title "Level of detail: frame time vs image error ($renderer)"
+set title "Level of detail: frame time vs image error ($renderer_short)"
 set xlabel "frame time, fraction of full detail (same tree, same size)"
 set ylabel "mean absolute error vs full detail (8-bit levels)"
 set key top right

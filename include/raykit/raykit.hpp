@@ -18,6 +18,8 @@
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"
 #include "raykit/svo_format.hpp"
+#include "raykit/svo_hybrid.hpp"
 #include "raykit/svo_mesh.hpp"
+#include "raykit/svo_traverse.hpp"
 #include "raykit/tonemap.hpp"
 #include "raykit/window_glass.hpp"
