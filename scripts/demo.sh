@@ -11,7 +11,7 @@ mkdir -p out
 # The city demo: five named views at 1280x720 (out/city_<view>.png); ./build/samples/city --window
 # flies through it when a display is available.
 ./build/samples/city out
-# The voxel demo: voxelised meshes ray cast among rasterised cubes (out/svo_hybrid.png) and its
-# level-of-detail view (out/svo_lod.png); --window animates it when a display is available.
+# The voxel demo: voxelised meshes ray cast among rasterised cubes (out/svo_hybrid.png), its
+# level-of-detail view (out/svo_lod.png) and secondary rays (out/svo_glass.png); --window animates it.
 ./build/samples/svo_demo out
 echo "demo: wrote $(ls out/*.png | tr '\n' ' ')"

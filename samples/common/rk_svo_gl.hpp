@@ -21,6 +21,7 @@
 #include "raykit/shader_source.hpp"
 #include "raykit/svo_format.hpp"
 #include "raykit/svo_hybrid.hpp"
+#include "raykit/svo_secondary.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "rk_gl.hpp"
 
@@ -35,9 +36,13 @@ struct SvoDrawParams {
     uint32_t max_level = ~0u;      ///< deepest level to descend to
     GLuint depth_texture = 0;      ///< copy of the depth buffer for early termination (0: none)
     bool show_iterations = false;  ///< colour = iterations / 64 (a cost heat map; misses included)
+    bool secondary = false;        ///< materials: shadows, mirror reflection, refraction (needs a tree with materials)
 };
 
-/// The fragment shader of the voxel pass. RK_SVO_TRACE_LOD is set per program.
+/// The fragment shader of the voxel pass. RK_SVO_TRACE_LOD and RK_SVO_PASS_SECONDARY (shadows,
+/// mirror reflection and refraction through svo_secondary.glsl, for trees with materials: a
+/// material with reflectance > 0 is a mirror, one with base_color.a < 1 is transparent and
+/// refracts with its ior and absorption) are set per program.
 inline std::string svo_fragment_source()
 {
     return R"(#version 450 core
@@ -58,6 +63,78 @@ layout(location = 8) uniform uvec2 u_streams;   // has colours, has normals
 layout(location = 9) uniform vec4 u_ambient;    // rgb, show iterations
 layout(binding = 0) uniform sampler2D u_depth_tex;
 layout(location = 0) out vec4 frag;
+#if RK_SVO_PASS_SECONDARY
+// Refract at the stored smooth normals (a voxelised sphere then bends light like a ball, not like a
+// staircase of cube faces); the face where no normal is stored.
+#define RK_SVO_INTERFACE_NORMAL(media, attr, face_n) (u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[attr]) : (face_n))
+#include "raykit/svo_secondary.glsl"
+#endif
+
+// Local shading of a hit: stored colour and normal, one directional light (shadowed by the octree
+// itself with secondary rays on).
+vec3 rk_pass_local(rk_svo_tree tree, vec3 p, vec3 d, rk_svo_trace_hit h, bool shadows)
+{
+    uint a = rk_svo_trace_attr(0u, tree, h);
+    vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
+    vec3 n = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[a]) : h.normal;
+    if (dot(n, d) > 0.0) n = -n;
+    float diff = max(dot(n, u_light_obj), 0.0);
+#if RK_SVO_PASS_SECONDARY
+    // Shadow ray from one voxel along the smooth normal: on a curved voxel surface the cube faces
+    // of the neighbouring voxels would otherwise shadow each other (Wilks's self-shadowing
+    // artefacts); the face-offset rk_svo_shadowed is exact for flat voxel geometry.
+    if (shadows && diff > 0.0) {
+        vec3 so = rk_svo_secondary_origin(p, h.normal, u_light_obj, tree, h.level) + n * rk_svo_voxel_size(tree, h.level);
+        if (rk_svo_trace(0u, tree, so, u_light_obj, 3.0e38, vec2(0.0)).hit) diff = 0.0;
+    }
+#endif
+    return albedo * (u_ambient.rgb + (1.0 - u_ambient.rgb) * diff);
+}
+
+#if RK_SVO_PASS_SECONDARY
+// Per material: x = mirror reflectance, y = opacity (alpha; < 1 refracts).
+layout(std430, binding = 8) readonly buffer RkSurface { vec4 rk_surface[]; };
+
+vec3 rk_pass_sky(vec3 d)
+{
+    return mix(vec3(0.62, 0.70, 0.80), vec3(0.22, 0.36, 0.66), clamp(d.y, 0.0, 1.0));
+}
+
+// One more bounce: what a secondary ray sees (locally shaded, no further bounces).
+vec3 rk_pass_radiance(rk_svo_tree tree, vec3 o, vec3 d)
+{
+    rk_svo_trace_hit h = rk_svo_trace(0u, tree, o, d, 3.0e38, vec2(0.0));
+    if (!h.hit) return rk_pass_sky(d);
+    return rk_pass_local(tree, o + d * h.t, d, h, true);
+}
+
+vec3 rk_pass_secondary(rk_svo_tree tree, vec3 o, vec3 dir, rk_svo_trace_hit h)
+{
+    vec3 p = o + dir * h.t;  // h.t is in units of dir
+    vec3 d = normalize(dir);
+    vec3 local = rk_pass_local(tree, p, d, h, true);
+    uint mat = rk_svo_material_ids[rk_svo_trace_attr(0u, tree, h)];
+    vec4 surf = rk_surface[mat];
+    vec3 col = local;
+    if (surf.y < 1.0) {
+        // Refractive: Fresnel reflection plus what leaves the object(s), absorbed on the way.
+        rk_svo_refraction r = rk_svo_refract_through(0u, tree, 0u, o, d, 1.0, 6u);
+        vec3 refl = rk_pass_radiance(tree, r.reflect_origin, r.reflect_dir);
+        vec3 through = rk_pass_radiance(tree, r.origin, r.dir);  // (an incomplete path goes on from where it stopped)
+        col = r.reflectance * refl + (1.0 - r.reflectance) * surf.y * local + (1.0 - surf.y) * r.transmittance * through;
+    } else if (surf.x > 0.0) {
+        // Mirror about the stored smooth normal (the cube faces of a tilted voxel plane would
+        // reflect in stripes).
+        vec3 ns = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[rk_svo_trace_attr(0u, tree, h)]) : h.normal;
+        if (dot(ns, d) > 0.0) ns = -ns;
+        vec3 rd = reflect(d, ns);
+        vec3 refl = rk_pass_radiance(tree, rk_svo_secondary_origin(p, h.normal, rd, tree, h.level), rd);
+        col = mix(local, refl, surf.x);
+    }
+    return col;
+}
+#endif
+
 void main()
 {
     vec2 ndc = (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
@@ -78,12 +155,11 @@ void main()
     }
     if (!h.hit) discard;
     gl_FragDepth = rk_svo_window_depth(u_obj_to_clip, o + d * h.t, vec2(u_depth.y, u_depth.z));
-    uint a = rk_svo_trace_attr(0u, tree, h);
-    vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
-    vec3 n = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[a]) : h.normal;
-    if (dot(n, d) > 0.0) n = -n;
-    float diff = max(dot(n, u_light_obj), 0.0);
-    frag = vec4(albedo * (u_ambient.rgb + (1.0 - u_ambient.rgb) * diff), 1.0);
+#if RK_SVO_PASS_SECONDARY
+    frag = vec4(rk_pass_secondary(tree, o, d, h), 1.0);
+#else
+    frag = vec4(rk_pass_local(tree, o + d * h.t, d, h, false), 1.0);
+#endif
 }
 )";
 }
@@ -110,19 +186,31 @@ public:
         const uint32_t zero = 0;
         colors_ = tree.color.empty() ? make_buffer(4, &zero) : make_buffer(tree.color.size() * 4, tree.color.data());
         normals_ = tree.normal.empty() ? make_buffer(4, &zero) : make_buffer(tree.normal.size() * 4, tree.normal.data());
-        for (int lod = 0; lod < 2; ++lod) {
-            std::string fs = raykit::inject_shader_defines(svo_fragment_source(), {{"RK_SVO_TRACE_LOD", lod ? "1" : "0"}});
+        // Programs: 0 plain, 1 LOD, 2 secondary rays (only for trees with materials).
+        for (int k = 0; k < 3; ++k) {
+            if (k == 2 && tree.material.empty()) break;
+            std::string fs = raykit::inject_shader_defines(
+                svo_fragment_source(), {{"RK_SVO_TRACE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
             fs = raykit::resolve_shader_includes(fs, "svo_pass.frag", shader_dir, {shader_dir});
-            prog_[lod] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
+            prog_[k] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
+        }
+        if (!tree.material.empty()) {
+            material_ids_ = make_buffer(tree.material.size() * 4, tree.material.data());
+            const std::vector<glm::vec4> media = raykit::svo_media_table(tree);
+            media_ = make_buffer(media.size() * sizeof(glm::vec4), media.data());
+            std::vector<glm::vec4> surf;
+            for (const raykit::SvoMaterial& m : tree.materials) surf.push_back(glm::vec4(m.reflectance, m.base_color.a, 0.0f, 0.0f));
+            if (surf.empty()) surf.push_back(glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
+            surface_ = make_buffer(surf.size() * sizeof(glm::vec4), surf.data());
         }
         glCreateVertexArrays(1, &vao_);
     }
     ~SvoGlObject()
     {
-        GLuint b[3] = {words_, colors_, normals_};
-        glDeleteBuffers(3, b);
-        glDeleteProgram(prog_[0]);
-        glDeleteProgram(prog_[1]);
+        GLuint b[6] = {words_, colors_, normals_, material_ids_, media_, surface_};
+        glDeleteBuffers(6, b);
+        for (GLuint p : prog_)
+            if (p) glDeleteProgram(p);
         glDeleteVertexArrays(1, &vao_);
     }
     SvoGlObject(const SvoGlObject&) = delete;
@@ -137,7 +225,8 @@ public:
         GLint vp[4];
         glGetIntegerv(GL_VIEWPORT, vp);
         const bool lod = p.lod_pixels > 0.0f;
-        const GLuint prog = prog_[lod ? 1 : 0];
+        const bool secondary = p.secondary && prog_[2] != 0;
+        const GLuint prog = prog_[secondary ? 2 : (lod ? 1 : 0)];
         glUseProgram(prog);
         glUniformMatrix4fv(0, 1, GL_FALSE, &hv.obj_to_clip[0][0]);
         glUniformMatrix4fv(1, 1, GL_FALSE, &hv.clip_to_obj[0][0]);
@@ -158,6 +247,11 @@ public:
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, words_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, colors_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normals_);
+        if (secondary) {
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, material_ids_);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, media_);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, surface_);
+        }
         if (p.depth_texture) glBindTextureUnit(0, p.depth_texture);
         glBindVertexArray(vao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -175,8 +269,8 @@ private:
     }
 
     const raykit::SvoTree& tree_;
-    GLuint words_ = 0, colors_ = 0, normals_ = 0, vao_ = 0;
-    GLuint prog_[2] = {0, 0};
+    GLuint words_ = 0, colors_ = 0, normals_ = 0, vao_ = 0, material_ids_ = 0, media_ = 0, surface_ = 0;
+    GLuint prog_[3] = {0, 0, 0};
 };
 
 /// A lit triangle mesh (positions + normals, flat colour) for the rasterised side of the frame.

@@ -8,7 +8,9 @@
 //   svo_hybrid.png  voxel figure, torus and Menger sponge with rasterised cubes flying through them
 //                   over a rasterised floor, at two moments of the animation;
 //   svo_lod.png     the same scene at full detail and with level-of-detail stops (nodes no wider
-//                   than one and four pixels), with per-pixel iteration heat maps.
+//                   than one and four pixels), with per-pixel iteration heat maps;
+//   svo_glass.png   secondary rays (svo_secondary.glsl): shadows, a mirror and an absorbing glass
+//                   sphere of index 1.5 in one voxelised scene, beside the primary-rays-only image.
 // --window opens a GLFW window (when built with GLFW and a display exists): the cubes animate,
 // L toggles LOD, H the heat map, Esc quits.
 //
@@ -172,6 +174,57 @@ bool make_scene(Scene& s, const std::string& shaders, bool quick)
     return true;
 }
 
+/// The secondary-rays scene: one tree (reflections and refractions see only their own tree) with a
+/// checker floor of closed tiles, a glass sphere (index 1.5, absorbing a little red), a mirror slab
+/// and a gold torus, all solid so the glass has an inside to march through.
+bool make_glass_scene(std::vector<VoxelObject>& out, const std::string& shaders, bool quick)
+{
+    raykit::SvoMeshData m;
+    std::vector<uint16_t> ids;
+    auto add = [&](const raykit::SvoMeshData& part, uint16_t id) {
+        rkmesh::append(m, part);
+        ids.resize(m.indices.size() / 3, id);
+    };
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 lo(-2.0 + 0.5 * i, -0.12, -2.0 + 0.5 * j);
+            add(rkmesh::box(lo, lo + glm::dvec3(0.5, 0.12, 0.5)), uint16_t((i + j) & 1));
+        }
+    add(rkmesh::icosphere(4, 0.55, glm::dvec3(-0.45, 0.56, 0.25)), 2);
+    add(rkmesh::box(glm::dvec3(-0.1, 0.0, -1.35), glm::dvec3(1.6, 1.3, -1.15), glm::dvec3(0.0, -0.45, 0.0)), 3);
+    add(rkmesh::torus(64, 32, 0.42, 0.14, glm::dvec3(0.95, 0.3, 0.45)), 4);
+    m.material_ids = ids;
+    auto mat = [](glm::vec4 c, float refl, float ior, glm::vec3 absorb) {
+        raykit::SvoMeshMaterial x;
+        x.values.base_color = c;
+        x.values.reflectance = refl;
+        x.values.ior = ior;
+        x.values.absorption = absorb;
+        return x;
+    };
+    m.materials = {mat(glm::vec4(0.85f, 0.85f, 0.82f, 1.0f), 0.0f, 1.5f, glm::vec3(0.0f)),
+                   mat(glm::vec4(0.22f, 0.24f, 0.28f, 1.0f), 0.0f, 1.5f, glm::vec3(0.0f)),
+                   mat(glm::vec4(0.95f, 0.97f, 1.0f, 0.06f), 0.0f, 1.5f, glm::vec3(0.9f, 0.25f, 0.1f)),
+                   mat(glm::vec4(0.7f, 0.72f, 0.75f, 1.0f), 0.85f, 1.5f, glm::vec3(0.0f)),
+                   mat(glm::vec4(0.95f, 0.68f, 0.22f, 1.0f), 0.0f, 1.5f, glm::vec3(0.0f))};
+    raykit::SvoBuildOptions opt;
+    opt.depth = quick ? 7 : 9;
+    opt.fill = raykit::SvoFill::solid;
+    opt.attributes = RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL;
+    VoxelObject v;
+    v.tree = std::make_unique<raykit::SvoTree>();
+    raykit::SvoStatus st;
+    if (!raykit::build_svo(m.view(), opt, *v.tree, st)) {
+        std::fprintf(stderr, "svo_demo: glass scene build failed: %s\n", st.message.c_str());
+        return false;
+    }
+    std::printf("svo_demo: glass scene, %zu triangles -> depth %d, %llu voxels\n", m.indices.size() / 3, opt.depth,
+                static_cast<unsigned long long>(v.tree->voxel_count));
+    v.gl = std::make_unique<rkgl::SvoGlObject>(*v.tree, shaders);
+    out.push_back(std::move(v));
+    return true;
+}
+
 /// The camera of a view.
 struct Camera {
     glm::vec3 eye, target;
@@ -326,6 +379,40 @@ int run_headless(const std::string& out_dir, bool quick)
     if (!rkgl::write_png_rgba8(lod_path, 3 * w, 2 * h, lod.data())) return 1;
     std::printf("svo_demo: wrote %s, %s (mean iteration grey: full %.1f, 1 px %.1f, 4 px %.1f)\n", hybrid_path.c_str(),
                 lod_path.c_str(), grey[0], grey[1], grey[2]);
+
+    // Secondary rays: shadows, a mirror, glass; and the same view without them for comparison.
+    std::vector<VoxelObject> glass;
+    if (!make_glass_scene(glass, RAYKIT_SHADER_DIR, quick)) return 1;
+    std::vector<unsigned char> glass_img(size_t(2 * w) * size_t(h) * 4);
+    const Camera gcam{glm::vec3(-1.9f, 1.25f, 2.6f), glm::vec3(0.1f, 0.45f, -0.2f), 0.8f};
+    double glass_ms = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        target.bind();
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glClearColor(0.62f, 0.70f, 0.80f, 1.0f);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        const glm::mat4 view = glm::lookAt(gcam.eye, gcam.target, glm::vec3(0.0f, 1.0f, 0.0f));
+        const glm::mat4 proj = raykit::svo_perspective(gcam.fov_y, float(w) / float(h), 0.05f, 60.0f, SvoDepthConvention::gl_minus_one_to_one);
+        rkgl::SvoDrawParams p;
+        p.secondary = k == 1;
+        p.light_dir_world = glm::normalize(glm::vec3(-0.45f, 0.8f, 0.35f));
+        const auto t0 = std::chrono::steady_clock::now();
+        glass[0].gl->draw(glass[0].model, view, proj, SvoDepthConvention::gl_minus_one_to_one, p);
+        const std::vector<unsigned char> img = target.read();
+        if (k == 1) glass_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        paste(glass_img, 2 * w, img, w, h, k * w, 0);
+    }
+    std::printf("svo_demo: secondary-rays view %dx%d: %.1f ms (%s)\n", w, h, glass_ms, ctx.renderer().c_str());
+    label(glass_img, 2 * w, h,
+          {{glm::vec2(12.0f, 10.0f), "primary rays only"},
+           {glm::vec2(float(w) + 12.0f, 10.0f), "secondary rays (svo_secondary.glsl): shadows,"},
+           {glm::vec2(float(w) + 12.0f, 10.0f + 14.0f * label_scale), "mirror, glass n = 1.5 absorbing red, Fresnel"}},
+          label_scale);
+    const std::string glass_path = out_dir + "/svo_glass.png";
+    if (!rkgl::write_png_rgba8(glass_path, 2 * w, h, glass_img.data())) return 1;
+    std::printf("svo_demo: wrote %s\n", glass_path.c_str());
 
     // Checks (the sample.svo_demo test): something drawn, and LOD saves iterations.
     const double drawn = non_sky_fraction(hybrid);

@@ -14,8 +14,8 @@
 //   - Stepping: a medium is crossed exactly voxel by voxel (a 3D DDA over the leaf grid), not by a
 //     fixed fraction of the scene, so no feature thinner than a step is skipped.
 //   - Absorption: integrated per voxel segment.
-// Interface normals are the voxel faces the ray crosses (a voxel model has no other surface).
-// Shading that wants the stored smooth normals can pass them to rk_svo_interface_at itself.
+// Interface normals are the voxel faces the ray crosses (a voxel model has no other surface);
+// a GLSL shader can substitute stored smooth normals (RK_SVO_INTERFACE_NORMAL below).
 //
 // Media: a voxel's medium is vec4(index, absorption rgb per object-space unit) from its material
 // (SvoMaterial.ior, .absorption; raykit::svo_media_table() packs them). Shaders read it through
@@ -73,6 +73,17 @@ layout(std430, binding = RK_SVO_MATERIAL_IDS_BINDING) readonly buffer RkSvoMater
 layout(std430, binding = RK_SVO_MEDIA_BINDING) readonly buffer RkSvoMedia { vec4 rk_svo_media[]; };
 #define RK_SVO_MEDIUM(m, attr) rk_svo_media[rk_svo_material_ids[(attr)]]
 #endif
+#endif
+
+// The normal of an interface (GLSL only): by default the voxel face the ray crosses. A shader
+// may define RK_SVO_INTERFACE_NORMAL(media, attr, face_n) before including this file to use, say,
+// the stored smooth normal of the voxel `attr` that carries the surface (samples/common/rk_svo_gl.hpp
+// does); the C++ build always uses the face (a macro must not change C++ behaviour per translation
+// unit).
+#if defined(__cplusplus) || !defined(RK_SVO_INTERFACE_NORMAL)
+#define RK_SVO_INTERFACE_NORMAL_(media, attr, face_n) (face_n)
+#else
+#define RK_SVO_INTERFACE_NORMAL_(media, attr, face_n) RK_SVO_INTERFACE_NORMAL(media, attr, face_n)
 #endif
 
 /// rk_svo_safe_normalize: v / |v| without overflow or underflow (scaled by its largest component
@@ -182,6 +193,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
     float n_cur = n_in;
     vec3 absorb = absorb_in;
     vec3 dir = d;
+    uint cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
     for (uint it = 0u; it < RK_SVO_MARCH_MAX_STEPS; ++it) {
         // Distance (voxel units) to the cell's exit plane on each axis.
         vec3 lo = vec3(c);
@@ -210,10 +222,12 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         float n_next = n_out;
         vec3 absorb_next = vec3(0.0f);
         bool occupied = false;
+        uint next_attr = cur_attr;
         if (inside_root) {
             rk_svo_hit lk = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, uvec3(nc), tree.depth);
             if (lk.found) {
                 occupied = true;
+                next_attr = lk.attr;
                 vec4 m = RK_SVO_MEDIUM(media, lk.attr);
                 n_next = m.x;
                 absorb_next = vec3(m.y, m.z, m.w);
@@ -221,7 +235,9 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         }
         r.steps = it + 1u;
         if (n_next != n_cur) {
-            rk_svo_interface f = rk_svo_interface_at(dir, face_out, n_cur, n_next);
+            // The surface belongs to the denser side's voxel: the one entered, or the one left.
+            vec3 nrm = RK_SVO_INTERFACE_NORMAL_(media, n_next > n_cur ? next_attr : cur_attr, face_out);
+            rk_svo_interface f = rk_svo_interface_at(dir, nrm, n_cur, n_next);
             r.interfaces += 1u;
             if (f.tir) {
                 dir = f.reflected;  // stays in this voxel, now heading back
@@ -240,6 +256,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         c = nc;
         n_cur = n_next;
         absorb = absorb_next;
+        cur_attr = next_attr;
     }
     r.exit_point = tree.root_min + q * voxel;
     r.dir = dir;
@@ -285,8 +302,9 @@ RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree t
         rk_svo_trace_hit h = rk_svo_trace(buf, tree, r.origin, r.dir, RK_FLT_MAX, vec2(0.0f));
         if (!h.hit) return r;
         vec3 p = r.origin + r.dir * h.t;
-        vec4 m = RK_SVO_MEDIUM(media, rk_svo_trace_attr(buf, tree, h));
-        rk_svo_interface f = rk_svo_interface_at(r.dir, h.normal, n_outside, m.x);
+        uint hit_attr = rk_svo_trace_attr(buf, tree, h);
+        vec4 m = RK_SVO_MEDIUM(media, hit_attr);
+        rk_svo_interface f = rk_svo_interface_at(r.dir, RK_SVO_INTERFACE_NORMAL_(media, hit_attr, h.normal), n_outside, m.x);
         if (!r.hit) {
             r.hit = true;
             r.reflectance = f.reflectance;
