@@ -20,6 +20,7 @@
 #include "raykit/svo_format.hpp"
 #include "raykit/svo_hybrid.hpp"
 #include "raykit/svo_mesh.hpp"
+#include "raykit/svo_secondary.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "raykit/tonemap.hpp"
 #include "raykit/window_glass.hpp"
