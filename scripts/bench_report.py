@@ -905,6 +905,59 @@ def interior_summary(out_dir):
     return md
 
 
+def svo_trace_summary(out_dir):
+    """Octree ray casting: the CPU throughput summary quoted from benchmarks_trace.md (written by
+    scripts/bench_trace_report.py) and the driver frame-time page (benchmarks_svo_gl.md)."""
+    md = ["## Octree ray casting: CPU throughput against Embree and OpenVDB, frame time on the driver", ""]
+    md.append("`rk_svo_trace` (the C++ build of `svo_traverse.glsl`) against Embree on the source triangles and "
+              "OpenVDB's level-set ray intersector, 512x512 primary rays, single thread "
+              "([benchmarks_trace.md](benchmarks_trace.md), `bash scripts/bench_trace.sh`; every depth 8-12, "
+              "2 threads, build times, hit agreement). Issue 11's goals: at least 5x OpenVDB and at least "
+              "Embree's speed.")
+    md.append("")
+    path = os.path.join(out_dir, "benchmarks_trace.md")
+    if not os.path.exists(path):
+        md.append("(Not measured yet: run `bash scripts/bench_trace.sh`.)")
+        md.append("")
+    else:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        table = ["| mesh | Embree Mrays/s | OpenVDB d10 | raykit d10 | raykit / OpenVDB | raykit / Embree |",
+                 "|---|---:|---:|---:|---:|---:|"]
+        mesh, e, v, r = None, None, None, None
+
+        def flush():
+            if mesh and e and r:
+                rv = f"{float(r) / float(v):.2f}" if v else "-"
+                table.append(f"| {mesh} | {e} | {v or '-'} | {r} | {rv} | {float(r) / float(e):.2f} |")
+
+        for l in lines:
+            if l.startswith("## "):
+                flush()
+                mesh, e, v, r = l[3:].strip(), None, None, None
+            cells = [c.strip() for c in l.strip().strip("|").split("|")] if l.startswith("|") else []
+            if len(cells) > 3:
+                if cells[0] == "Embree":
+                    e = cells[2]
+                elif cells[0] == "OpenVDB" and cells[1] == "10":
+                    v = cells[2]
+                elif cells[0] == "raykit" and cells[1] == "10":
+                    r = cells[2]
+        flush()
+        md.extend(table)
+        md.append("")
+        md.append("![Mrays/s by depth, single thread](img/bench_trace_mrays.png)")
+        md.append("")
+    md.append("Frame time of the voxel pass on the GL driver against rasterising the source mesh, by depth, "
+              "resolution and level of detail, with the LOD image error: "
+              "[benchmarks_svo_gl.md](benchmarks_svo_gl.md) (`bash scripts/bench_svo_gl.sh`).")
+    md.append("")
+    if os.path.exists(os.path.join(out_dir, "img", "bench_svo_gl_tradeoff.png")):
+        md.append("![Level of detail: frame time against image error](img/bench_svo_gl_tradeoff.png)")
+        md.append("")
+    return md
+
+
 def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     pngs_written = [os.path.basename(p) for p in pngs.values() if p]
     sources = [s.source for s in suites if s.source]
@@ -925,6 +978,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
                                            for s in suites) + ".")
         md.append("")
     md.extend(interior_summary(out_dir))
+    md.extend(svo_trace_summary(out_dir))
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))
