@@ -78,7 +78,7 @@ TEST(SvoHybrid, WindowDepthMatchesClosedForms)
             }
             std::printf("[hybrid] %-8s far %-6g: window depth within %.1f x 2^-24 of the closed form\n", name_of(c),
                         double(f), worst);
-            EXPECT_LT(worst, 8.0) << name_of(c) << " far " << f;
+            EXPECT_LT(worst, 4.0) << name_of(c) << " far " << f;  // measured <= 2.5
         }
     }
 }
@@ -129,7 +129,7 @@ TEST(SvoHybrid, PixelRayThroughUnprojectedPoints)
             }
             std::printf("[hybrid] %-8s %s: pixel ray off its pixel by %.1e NDC; depth -> t -> depth within %.1f x 2^-24\n",
                         name_of(c), ortho ? "ortho      " : "perspective", worst_line, worst_t);
-            EXPECT_LT(worst_line, 1e-5);
+            EXPECT_LT(worst_line, 5e-6);  // measured 3.4e-6
             EXPECT_LT(worst_t, 48.0);
         }
     }

@@ -247,3 +247,53 @@ TEST(SvoSecondary, NoNanForHostileInputs)
         ASSERT_TRUE(std::isfinite(r.reflectance));
     }
 }
+
+TEST(SvoSecondary, OffsetsHoldAtDepth18AndFromFarCameras)
+{
+    // Depth 18 (voxel = 2^-18 of the root): a 16 x 16 floor patch at z = 0 and a wall 3 voxels thick
+    // (x 8..10) on it. 2e-6 root sizes would be half a voxel here: the offset must come from the
+    // voxel, not from the root.
+    std::vector<glm::uvec3> cells;
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 16; ++x) {
+            cells.push_back({x, y, 0u});
+            if (x >= 8u && x <= 10u)
+                for (uint32_t z = 1; z <= 8; ++z) cells.push_back({x, y, z});
+        }
+    svotest::PackOptions po;
+    po.root_min = glm::vec3(-0.5f);
+    po.root_size = 1.0f;
+    const SvoTree t = svotest::pack_cells(18, cells, po);
+    const std::vector<uint32_t> words = t.gpu_words();
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const float v = 1.0f / 262144.0f;
+    int blocked = 0, self = 0, self_far = 0, n = 0, far_hits = 0;
+    std::mt19937 rng(18);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 p = po.root_min + v * glm::vec3(5.0f + 2.5f * U(rng), 1.0f + 14.0f * U(rng), 1.0f);
+        // Towards the wall, 1.5..3 voxels away, low: must be blocked.
+        const glm::vec3 to_wall = glm::normalize(glm::vec3(1.0f, 0.0f, 0.3f * U(rng)));
+        blocked += rk_svo_shadowed(words.data(), tree, p, glm::vec3(0.0f, 0.0f, 1.0f), 18u, to_wall, RK_FLT_MAX);
+        // Away from the wall, grazing: nothing there.
+        const glm::vec3 away = glm::normalize(glm::vec3(-1.0f, 0.0f, 0.01f + 0.5f * U(rng)));
+        self += rk_svo_shadowed(words.data(), tree, p, glm::vec3(0.0f, 0.0f, 1.0f), 18u, away, RK_FLT_MAX);
+        // The same from a primary hit seen from 100 root sizes away (the hit point carries the far
+        // origin's rounding; the offset snaps it onto the face first).
+        const glm::vec3 eye = p + 100.0f * glm::normalize(glm::vec3(-0.3f, 0.2f, 1.0f));
+        const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, eye, p - eye, RK_FLT_MAX, glm::vec2(0.0f));
+        if (h.hit && h.normal.z > 0.5f) {
+            ++far_hits;
+            const glm::vec3 q = rk_svo_hit_point(tree, eye, p - eye, h);
+            self_far += rk_svo_shadowed(words.data(), tree, q, h.normal, h.level, away, RK_FLT_MAX);
+        }
+        ++n;
+    }
+    std::printf("[secondary] depth 18: %d of %d shadow rays blocked by a 3-voxel wall, %d self-shadowed, %d of %d hits "
+                "seen from 100 root sizes self-shadowed\n",
+                blocked, n, self, self_far, far_hits);
+    EXPECT_EQ(blocked, n);
+    EXPECT_EQ(self, 0);
+    EXPECT_GT(far_hits, n / 2);
+    EXPECT_EQ(self_far, 0);
+}

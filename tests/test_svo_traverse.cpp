@@ -5,13 +5,13 @@
 // solid, a mesh far from the origin) and depth-16 trees, each hit must be
 //   - an occupied voxel (or non-empty node at max_level) that the exact ray touches,
 //   - entered where the exact ray enters it: the hit point on the node's surface within kTol root
-//     sizes (plus 4 float ULPs of the origin's distance for far origins),
+//     sizes (plus 8 float ULPs of the origin's distance for far origins: its rounding and t's),
 //   - no later than the first voxel the exact ray passes through by more than kTol (zero missed
 //     voxels) and no earlier than the first voxel it touches,
 // a miss is allowed only when the exact ray passes through no voxel by more than kTol, the face
 // normal is the entry face, the attribute index is the builder's, and the iteration bound is
 // never reached. The LOD build is tested in parts/test_svo_traverse/lod.cpp, linked into this same
-// executable with RK_SVO_TRACE_LOD=1.
+// executable with RK_SVO_TRAVERSE_LOD=1.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -102,12 +102,12 @@ bool entry_face_ok(glm::dvec3 lo, double cs, glm::dvec3 o, glm::dvec3 d, int ax,
     return te[ax] >= te[best] - 2.0 * e / std::abs(d[ax]) - 2.0 * e / std::abs(d[best]);
 }
 
-/// The position tolerance of a ray in root sizes: kTol, plus 4 float ULPs of the origin's distance
+/// The position tolerance of a ray in root sizes: kTol, plus 8 float ULPs of the origin's distance
 /// from the root's centre (the rounding of a far origin, documented in svo_traverse.glsl).
 double ray_tol(const svotrace::Ray& r, const SvoTree& t)
 {
     const double rs = double(t.root_size);
-    return kTol + 4.0 * 0x1p-24 * glm::length(glm::dvec3(r.origin) - (glm::dvec3(t.root_min) + 0.5 * rs)) / rs;
+    return kTol + 8.0 * 0x1p-24 * glm::length(glm::dvec3(r.origin) - (glm::dvec3(t.root_min) + 0.5 * rs)) / rs;
 }
 
 template <class Occupied>
@@ -123,7 +123,7 @@ void check_ray(const char* what, const svotrace::Ray& ray, const rk_svo_trace_hi
     const double dist = glm::length(o - (rmin + 0.5 * rs)) / rs;
     const double tol = ray_tol(ray, t);
     std::string why;
-    bool ok = std::isfinite(h.t) && h.iterations < RK_SVO_TRACE_MAX_ITER;
+    bool ok = std::isfinite(h.t) && h.iterations < RK_SVO_TRAVERSE_MAX_ITER;
     if (!ok) why = "non-finite t or iteration bound reached";
     if (ok && h.hit) {
         ++st.hits;
@@ -227,11 +227,11 @@ Stats run_dense(const char* what, const SvoTree& t, const std::vector<svotrace::
 
 }  // namespace
 
-/// For parts/test_svo_traverse/lod.cpp: this translation unit's (RK_SVO_TRACE_LOD=0) answer for a
+/// For parts/test_svo_traverse/lod.cpp: this translation unit's (RK_SVO_TRAVERSE_LOD=0) answer for a
 /// ray, so that test can show the two builds coexist with their own behaviour.
 bool svo_trace_default_build(const SvoTree& t, glm::vec3 origin, glm::vec3 dir, float t_max, glm::vec2 cone, uint32_t* level)
 {
-    static_assert(RK_SVO_TRACE_LOD == 0, "the default build");
+    static_assert(RK_SVO_TRAVERSE_LOD == 0, "the default build");
     const std::vector<uint32_t> words = t.gpu_words();
     const rk_svo_trace_hit h = rk_svo_trace(words.data(), svo_trace_tree(t), origin, dir, t_max, cone);
     *level = h.level;
@@ -262,7 +262,7 @@ TEST(SvoTrace, RandomTreesAgainstDenseDda)
         }
     }
     EXPECT_GE(total, 1000000);
-    std::printf("[trace] random trees: %ld rays, max %u iterations (bound %u)\n", total, max_iter, RK_SVO_TRACE_MAX_ITER);
+    std::printf("[trace] random trees: %ld rays, max %u iterations (bound %u)\n", total, max_iter, RK_SVO_TRAVERSE_MAX_ITER);
 }
 
 TEST(SvoTrace, VoxelisedMeshesAgainstDenseDda)
@@ -389,10 +389,10 @@ TEST(SvoTrace, GrazingRaysStayUnderTheIterationBound)
         const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, o, d, std::numeric_limits<float>::max(), glm::vec2(0.0f));
         worst = std::max(worst, h.iterations);
         hits += h.hit;
-        ASSERT_LT(h.iterations, RK_SVO_TRACE_MAX_ITER) << "ray " << i;
+        ASSERT_LT(h.iterations, RK_SVO_TRAVERSE_MAX_ITER) << "ray " << i;
     }
     std::printf("[trace] grazing rays over a depth-11 wall: max %u iterations (bound %u), %ld hits\n", worst,
-                RK_SVO_TRACE_MAX_ITER, hits);
+                RK_SVO_TRAVERSE_MAX_ITER, hits);
     EXPECT_GT(worst, 500u);  // they are the expensive case the bound must cover
 }
 
@@ -416,7 +416,7 @@ TEST(SvoTrace, NoNanForHostileInputs)
                         ASSERT_TRUE(std::isfinite(h.t) && std::isfinite(h.normal.x) && std::isfinite(h.normal.y) &&
                                     std::isfinite(h.normal.z))
                             << ox << " " << oy << " " << dx << " " << dy << " " << tm;
-                        ASSERT_LT(h.iterations, RK_SVO_TRACE_MAX_ITER);
+                        ASSERT_LT(h.iterations, RK_SVO_TRAVERSE_MAX_ITER);
                         if (tm < 0.0f) {
                             ASSERT_FALSE(h.hit);
                         }
@@ -442,7 +442,7 @@ TEST(SvoTrace, ShaderDefaultsMatchTheHeader)
     std::stringstream ss;
     ss << f.rdbuf();
     const std::string src = ss.str();
-    EXPECT_NE(src.find("#define RK_SVO_TRACE_LOD 0\n"), std::string::npos);
-    EXPECT_NE(src.find("#define RK_SVO_TRACE_MAX_ITER 16384u\n"), std::string::npos);
-    static_assert(RK_SVO_TRACE_LOD == 0 && RK_SVO_TRACE_MAX_ITER == 16384u, "this translation unit uses the defaults");
+    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_LOD 0\n"), std::string::npos);
+    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_MAX_ITER 16384u\n"), std::string::npos);
+    static_assert(RK_SVO_TRAVERSE_LOD == 0 && RK_SVO_TRAVERSE_MAX_ITER == 16384u, "this translation unit uses the defaults");
 }

@@ -2,7 +2,7 @@
 // reflection and refraction with Fresnel and total internal reflection, heterogeneous media
 // through octrees) and svo_media_table(), which packs a tree's materials for it.
 //
-// Feature macros (RK_SVO_FRESNEL_FAST, RK_SVO_MEDIA_ABSORPTION, RK_SVO_MARCH_MAX_STEPS) may differ
+// Feature macros (RK_SVO_SECONDARY_FRESNEL_FAST, RK_SVO_SECONDARY_ABSORPTION, RK_SVO_SECONDARY_MAX_STEPS) may differ
 // between translation units: like svo_traverse.hpp, the functions live in an inline namespace
 // named after the macro values.
 #pragma once
@@ -13,19 +13,19 @@
 #include "raykit/svo_traverse.hpp"
 
 // The .glsl's defaults (they name the namespace before the text is included).
-#ifndef RK_SVO_FRESNEL_FAST
-#define RK_SVO_FRESNEL_FAST 0
+#ifndef RK_SVO_SECONDARY_FRESNEL_FAST
+#define RK_SVO_SECONDARY_FRESNEL_FAST 0
 #endif
-#ifndef RK_SVO_MEDIA_ABSORPTION
-#define RK_SVO_MEDIA_ABSORPTION 1
+#ifndef RK_SVO_SECONDARY_ABSORPTION
+#define RK_SVO_SECONDARY_ABSORPTION 1
 #endif
-#ifndef RK_SVO_MARCH_MAX_STEPS
-#define RK_SVO_MARCH_MAX_STEPS 4096u
+#ifndef RK_SVO_SECONDARY_MAX_STEPS
+#define RK_SVO_SECONDARY_MAX_STEPS 4096u
 #endif
 
 #define RK_SVO_SECONDARY_NS_CAT_(f, a, s) svo_secondary_fast##f##_abs##a##_steps##s
 #define RK_SVO_SECONDARY_NS_CAT(f, a, s) RK_SVO_SECONDARY_NS_CAT_(f, a, s)
-#define RK_SVO_SECONDARY_NS RK_SVO_SECONDARY_NS_CAT(RK_SVO_FRESNEL_FAST, RK_SVO_MEDIA_ABSORPTION, RK_SVO_MARCH_MAX_STEPS)
+#define RK_SVO_SECONDARY_NS RK_SVO_SECONDARY_NS_CAT(RK_SVO_SECONDARY_FRESNEL_FAST, RK_SVO_SECONDARY_ABSORPTION, RK_SVO_SECONDARY_MAX_STEPS)
 
 namespace raykit {
 inline namespace RK_SVO_SECONDARY_NS {

@@ -1,7 +1,7 @@
 // raykit — svo_traverse.hpp: the CPU build of shaders/raykit/svo_traverse.glsl (octree ray casting)
 // and the CPU-side helpers that fill its uniforms.
 //
-// Feature macros (RK_SVO_TRACE_LOD, RK_SVO_TRACE_MAX_ITER; documented in the .glsl) may differ
+// Feature macros (RK_SVO_TRAVERSE_LOD, RK_SVO_TRAVERSE_MAX_ITER; documented in the .glsl) may differ
 // between translation units: the functions are compiled into an inline namespace whose name spells
 // the macro values, so each translation unit calls the build it configured (raykit::rk_svo_trace
 // resolves to it) and the linker never merges two different builds under one name.
@@ -11,19 +11,19 @@
 
 // The .glsl's defaults, needed here to name the namespace before the text is included (the .glsl
 // keeps its own #ifndef defaults for shaders; test_svo_traverse checks both agree).
-#ifndef RK_SVO_TRACE_LOD
-#define RK_SVO_TRACE_LOD 0
+#ifndef RK_SVO_TRAVERSE_LOD
+#define RK_SVO_TRAVERSE_LOD 0
 #endif
-#ifndef RK_SVO_TRACE_MAX_ITER
-#define RK_SVO_TRACE_MAX_ITER 16384u
+#ifndef RK_SVO_TRAVERSE_MAX_ITER
+#define RK_SVO_TRAVERSE_MAX_ITER 16384u
 #endif
 
-#define RK_SVO_TRACE_NS_CAT_(lod, it) svo_trace_lod##lod##_iter##it
-#define RK_SVO_TRACE_NS_CAT(lod, it) RK_SVO_TRACE_NS_CAT_(lod, it)
-#define RK_SVO_TRACE_NS RK_SVO_TRACE_NS_CAT(RK_SVO_TRACE_LOD, RK_SVO_TRACE_MAX_ITER)
+#define RK_SVO_TRAVERSE_NS_CAT_(lod, it) svo_traverse_lod##lod##_iter##it
+#define RK_SVO_TRAVERSE_NS_CAT(lod, it) RK_SVO_TRAVERSE_NS_CAT_(lod, it)
+#define RK_SVO_TRAVERSE_NS RK_SVO_TRAVERSE_NS_CAT(RK_SVO_TRAVERSE_LOD, RK_SVO_TRAVERSE_MAX_ITER)
 
 namespace raykit {
-inline namespace RK_SVO_TRACE_NS {
+inline namespace RK_SVO_TRAVERSE_NS {
 #include "raykit/svo_traverse.glsl"
 
 /// svo_trace_tree: the rk_svo_tree uniforms of a packed tree, for buffers laid out as
@@ -40,5 +40,5 @@ inline rk_svo_tree svo_trace_tree(const SvoTree& t, uint32_t max_level = ~0u)
     r.root_size = t.root_size;
     return r;
 }
-}  // namespace RK_SVO_TRACE_NS
+}  // namespace RK_SVO_TRAVERSE_NS
 }  // namespace raykit

@@ -39,7 +39,7 @@ struct SvoDrawParams {
     bool secondary = false;        ///< materials: shadows, mirror reflection, refraction (needs a tree with materials)
 };
 
-/// The fragment shader of the voxel pass. RK_SVO_TRACE_LOD and RK_SVO_PASS_SECONDARY (shadows,
+/// The fragment shader of the voxel pass. RK_SVO_TRAVERSE_LOD and RK_SVO_PASS_SECONDARY (shadows,
 /// mirror reflection and refraction through svo_secondary.glsl, for trees with materials: a
 /// material with reflectance > 0 is a mirror, one with base_color.a < 1 is transparent and
 /// refracts with its ior and absorption) are set per program.
@@ -110,7 +110,7 @@ vec3 rk_pass_radiance(rk_svo_tree tree, vec3 o, vec3 d)
 
 vec3 rk_pass_secondary(rk_svo_tree tree, vec3 o, vec3 dir, rk_svo_trace_hit h)
 {
-    vec3 p = o + dir * h.t;  // h.t is in units of dir
+    vec3 p = rk_svo_hit_point(tree, o, dir, h);  // on the entered face exactly
     vec3 d = normalize(dir);
     vec3 local = rk_pass_local(tree, p, d, h, true);
     uint mat = rk_svo_material_ids[rk_svo_trace_attr(0u, tree, h)];
@@ -179,8 +179,15 @@ void main()
 /// A packed octree on the GPU and its draw call.
 class SvoGlObject {
 public:
-    SvoGlObject(const raykit::SvoTree& tree, const std::string& shader_dir) : tree_(tree)
+    SvoGlObject(const raykit::SvoTree& tree, const std::string& shader_dir)
     {
+        tree_.depth = tree.depth;
+        tree_.desc_words = tree.desc_words;
+        tree_.brick_base_word = tree.gpu_brick_base_word();
+        tree_.root_min = tree.root_min;
+        tree_.root_size = tree.root_size;
+        tree_.colors = !tree.color.empty();
+        tree_.normals = !tree.normal.empty();
         const std::vector<uint32_t> words = tree.gpu_words();
         words_ = make_buffer(words.size() * 4, words.data());
         const uint32_t zero = 0;
@@ -190,7 +197,7 @@ public:
         for (int k = 0; k < 3; ++k) {
             if (k == 2 && tree.material.empty()) break;
             std::string fs = raykit::inject_shader_defines(
-                svo_fragment_source(), {{"RK_SVO_TRACE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
+                svo_fragment_source(), {{"RK_SVO_TRAVERSE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
             fs = raykit::resolve_shader_includes(fs, "svo_pass.frag", shader_dir, {shader_dir});
             prog_[k] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
         }
@@ -232,17 +239,16 @@ public:
         glUniformMatrix4fv(1, 1, GL_FALSE, &hv.clip_to_obj[0][0]);
         glUniform4f(2, hv.z_near_ndc, hv.depth_range.x, hv.depth_range.y, p.depth_texture ? 1.0f : 0.0f);
         const uint32_t ml = p.max_level < tree_.depth ? p.max_level : tree_.depth;
-        glUniform4ui(3, tree_.depth, ml, tree_.desc_words, tree_.gpu_brick_base_word());
+        glUniform4ui(3, tree_.depth, ml, tree_.desc_words, tree_.brick_base_word);
         glUniform4f(4, tree_.root_min.x, tree_.root_min.y, tree_.root_min.z, tree_.root_size);
-        // The cone is in object units: the object's scale changes distances along the ray only
-        // through the model matrix, which the ray set-up already undid (t is in object units).
-        const glm::vec2 cone =
-            lod ? raykit::rk_svo_pixel_cone(p.fov_y, float(vp[3]), p.lod_pixels) / model_scale(model) : glm::vec2(0.0f);
+        // The cone's slope is an angle, the same in object and world units (a uniform model scale
+        // scales node sizes and distances alike), so it needs no conversion.
+        const glm::vec2 cone = lod ? raykit::rk_svo_pixel_cone(p.fov_y, float(vp[3]), p.lod_pixels) : glm::vec2(0.0f);
         glUniform2f(5, cone.x, cone.y);
         const glm::vec3 l = glm::normalize(glm::vec3(glm::inverse(model) * glm::vec4(p.light_dir_world, 0.0f)));
         glUniform3f(6, l.x, l.y, l.z);
         glUniform4f(7, float(vp[0]), float(vp[1]), float(vp[2]), float(vp[3]));
-        glUniform2ui(8, tree_.color.empty() ? 0u : 1u, tree_.normal.empty() ? 0u : 1u);
+        glUniform2ui(8, tree_.colors ? 1u : 0u, tree_.normals ? 1u : 0u);
         glUniform4f(9, p.ambient.x, p.ambient.y, p.ambient.z, p.show_iterations ? 1.0f : 0.0f);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, words_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, colors_);
@@ -257,18 +263,16 @@ public:
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
 
-    const raykit::SvoTree& tree() const { return tree_; }
 
 private:
-    static float model_scale(const glm::mat4& m)
-    {
-        // Object units per world unit along the ray are what the cone needs; a uniform scale is
-        // assumed (the largest axis scale otherwise: a conservative cone).
-        const float s = std::max(glm::length(glm::vec3(m[0])), std::max(glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))));
-        return s > 0.0f ? s : 1.0f;
-    }
-
-    const raykit::SvoTree& tree_;
+    /// What draw() needs of the tree (kept by value: the caller's SvoTree may go away).
+    struct TreeInfo {
+        uint32_t depth = 0, desc_words = 0, brick_base_word = 0;
+        glm::vec3 root_min{0.0f};
+        float root_size = 0.0f;
+        bool colors = false, normals = false;
+    };
+    TreeInfo tree_;
     GLuint words_ = 0, colors_ = 0, normals_ = 0, vao_ = 0, material_ids_ = 0, media_ = 0, surface_ = 0;
     GLuint prog_[3] = {0, 0, 0};
 };

@@ -6,8 +6,8 @@
 // Shared GLSL/C++ source (include/raykit/svo_secondary.hpp is the C++ build). Built on
 // svo_traverse.glsl and fresnel.glsl. It fixes what Wilks ("Real-time GPU Ray Tracing with
 // Volumetric Effects") left open:
-//   - Offsets: secondary rays start 1/64 voxel off the face they leave (and at least 4e-6 root
-//     sizes, twice the traversal's position tolerance), not 5.7 voxels.
+//   - Offsets: secondary rays start 1/64 voxel off the face they leave (snapped onto its lattice
+//     plane first), not 5.7 voxels.
 //   - TIR: total internal reflection reflects, instead of refracting along a zero vector.
 //   - Fresnel: the reflectance is the exact dielectric Fresnel (or its fast form), at cos_i of
 //     the interface.
@@ -19,19 +19,20 @@
 //
 // Media: a voxel's medium is vec4(index, absorption rgb per object-space unit) from its material
 // (SvoMaterial.ior, .absorption; raykit::svo_media_table() packs them). Shaders read it through
-// RK_SVO_MEDIUM(media, attr). Unless the including shader defines that macro, this file declares
-// two SSBOs (GLSL only):
+// RK_SVO_MEDIUM(media, attr). Unless the including shader defines that macro (do so on GLSL ES 3.1
+// drivers without fragment-stage SSBOs, e.g. reading textures), this file declares two SSBOs
+// (GLSL only):
 //   RkSvoMaterialIds { uint rk_svo_material_ids[]; } at RK_SVO_MATERIAL_IDS_BINDING (default 6),
 //   RkSvoMedia { vec4 rk_svo_media[]; } at RK_SVO_MEDIA_BINDING (default 7).
 // In C++ the media argument is an rk_svo_media_ref of two pointers.
 //
 // Features:
-//   RK_SVO_FRESNEL_FAST (default 0): 1 uses rk_fresnel_dielectric_fast (no sqrt, 1.7e-3 max error
+//   RK_SVO_SECONDARY_FRESNEL_FAST (default 0): 1 uses rk_fresnel_dielectric_fast (no sqrt, 1.7e-3 max error
 //       for glass) for external reflection; internal reflection stays exact.
-//   RK_SVO_MEDIA_ABSORPTION (default 1): 0 drops the Beer–Lambert transmittance (no exp per voxel).
-//   RK_SVO_MARCH_MAX_STEPS (default 4096u): bound on the voxels one rk_svo_march crosses.
+//   RK_SVO_SECONDARY_ABSORPTION (default 1): 0 drops the Beer–Lambert transmittance (no exp per voxel).
+//   RK_SVO_SECONDARY_MAX_STEPS (default 4096u): bound on the voxels one rk_svo_march crosses.
 //
-// @rk-variants RK_SVO_FRESNEL_FAST=1 | RK_SVO_MEDIA_ABSORPTION=0 | RK_SVO_FRESNEL_FAST=1 RK_SVO_MARCH_MAX_STEPS=64u
+// @rk-variants RK_SVO_SECONDARY_FRESNEL_FAST=1 | RK_SVO_SECONDARY_ABSORPTION=0 | RK_SVO_SECONDARY_FRESNEL_FAST=1 RK_SVO_SECONDARY_MAX_STEPS=64u
 // @rk-es 310
 #ifndef RK_SVO_SECONDARY_GLSL
 #define RK_SVO_SECONDARY_GLSL
@@ -40,14 +41,14 @@
 #include "fresnel.glsl"
 #include "svo_traverse.glsl"
 
-#ifndef RK_SVO_FRESNEL_FAST
-#define RK_SVO_FRESNEL_FAST 0
+#ifndef RK_SVO_SECONDARY_FRESNEL_FAST
+#define RK_SVO_SECONDARY_FRESNEL_FAST 0
 #endif
-#ifndef RK_SVO_MEDIA_ABSORPTION
-#define RK_SVO_MEDIA_ABSORPTION 1
+#ifndef RK_SVO_SECONDARY_ABSORPTION
+#define RK_SVO_SECONDARY_ABSORPTION 1
 #endif
-#ifndef RK_SVO_MARCH_MAX_STEPS
-#define RK_SVO_MARCH_MAX_STEPS 4096u
+#ifndef RK_SVO_SECONDARY_MAX_STEPS
+#define RK_SVO_SECONDARY_MAX_STEPS 4096u
 #endif
 #ifndef RK_SVO_MATERIAL_IDS_BINDING
 #define RK_SVO_MATERIAL_IDS_BINDING 6
@@ -57,21 +58,22 @@
 #endif
 
 #ifdef __cplusplus
-/// C++: where a voxel's medium comes from (material id stream and media table).
+/// C++: where a voxel's medium comes from (material id stream and media table). (The C++ build
+/// ignores an RK_SVO_MEDIUM definition: a macro must not change C++ behaviour per translation unit.)
 struct rk_svo_media_ref {
     const uint* material_ids;
     const vec4* media;
 };
 #define RK_SVO_MEDIA rk_svo_media_ref
-#ifndef RK_SVO_MEDIUM
-#define RK_SVO_MEDIUM(m, attr) ((m).media[(m).material_ids[(attr)]])
-#endif
+#define RK_SVO_MEDIUM_(m, attr) ((m).media[(m).material_ids[(attr)]])
 #else
 #define RK_SVO_MEDIA uint
-#ifndef RK_SVO_MEDIUM
+#ifdef RK_SVO_MEDIUM
+#define RK_SVO_MEDIUM_(m, attr) RK_SVO_MEDIUM(m, attr)
+#else
 layout(std430, binding = RK_SVO_MATERIAL_IDS_BINDING) readonly buffer RkSvoMaterialIds { uint rk_svo_material_ids[]; };
 layout(std430, binding = RK_SVO_MEDIA_BINDING) readonly buffer RkSvoMedia { vec4 rk_svo_media[]; };
-#define RK_SVO_MEDIUM(m, attr) rk_svo_media[rk_svo_material_ids[(attr)]]
+#define RK_SVO_MEDIUM_(m, attr) rk_svo_media[rk_svo_material_ids[(attr)]]
 #endif
 #endif
 
@@ -103,19 +105,49 @@ RK_INLINE float rk_svo_voxel_size(rk_svo_tree tree, uint level)
 }
 
 /// rk_svo_secondary_origin: where a secondary ray in direction `dir` starts from a point `p` on a
-/// node face with unit axis normal `face_n` (rk_svo_trace_hit.normal): moved off the face to the
-/// side `dir` goes, by max(voxel / 64, 4e-6 root sizes), so it neither re-hits the face it leaves
-/// (the hit point is within 2e-6 root sizes of it) nor tunnels through a neighbour (Wilks's 5.7
-/// voxels could). Cost: 1 dot, 1 mad.
+/// node face of `level` with unit axis normal `face_n` (rk_svo_trace_hit.normal): p with its
+/// coordinate along the normal snapped onto the face's lattice plane and moved to the side `dir`
+/// goes by 1/64 voxel, or the traversal's resolution (4 x 2^-23 root sizes) or 4 ULPs of the
+/// coordinate where those are more (at most half a voxel: the start stays in the empty cell next to
+/// the face), so it neither re-hits the face it leaves nor tunnels through a neighbour (Wilks's 5.7
+/// voxels could). Domain: p within half a voxel of the face plane: use rk_svo_hit_point, which puts
+/// a hit exactly on it whatever the ray's rounding. Cost: ~12 flops, 1 floor, 1 div.
 RK_INLINE vec3 rk_svo_secondary_origin(vec3 p, vec3 face_n, vec3 dir, rk_svo_tree tree, uint level)
 {
-    float off = max(rk_svo_voxel_size(tree, level) * 0.015625f, tree.root_size * 4.0e-6f);
-    return p + face_n * (dot(dir, face_n) >= 0.0f ? off : -off);
+    // Snap the coordinate along the normal onto the face's lattice plane (removes the hit point's
+    // rounding, however far the primary ray came from), then step 1/64 voxel off it, or 4 ULPs of
+    // the coordinate where that is more.
+    float voxel = rk_svo_voxel_size(tree, level);
+    uint a = abs(face_n.x) > 0.5f ? 0u : (abs(face_n.y) > 0.5f ? 1u : 2u);
+    float pa = a == 0u ? p.x : (a == 1u ? p.y : p.z);
+    float ra = a == 0u ? tree.root_min.x : (a == 1u ? tree.root_min.y : tree.root_min.z);
+    float plane = ra + floor((pa - ra) / voxel + 0.5f) * voxel;
+    // At least the traversal's own resolution (4 x 2^-23 root sizes: half a voxel at depth 20, so the
+    // start stays inside the empty cell the hit ray came through) and 4 ULPs of the coordinate.
+    float off = max(max(voxel * 0.015625f, tree.root_size * 4.76837158e-7f), abs(plane) * 4.8e-7f);
+    float q = plane + ((a == 0u ? dir.x : (a == 1u ? dir.y : dir.z)) >= 0.0f ? off : -off);
+    return vec3(a == 0u ? q : p.x, a == 1u ? q : p.y, a == 2u ? q : p.z);
+}
+
+/// rk_svo_hit_point: the point where a ray (origin, dir as given to rk_svo_trace) entered the node of
+/// `hit`: origin + dir * t, with the coordinate along the entry normal set exactly onto the entered
+/// face's plane (a far origin's rounding can otherwise put it voxels off at depth >= 16). For an
+/// origin inside the node (t = 0) the origin itself. Cost: 1 mad, ~6 flops.
+RK_INLINE vec3 rk_svo_hit_point(rk_svo_tree tree, vec3 origin, vec3 dir, rk_svo_trace_hit hit)
+{
+    vec3 p = origin + dir * hit.t;
+    if (!(hit.t > 0.0f)) return p;
+    float size = rk_svo_voxel_size(tree, hit.level);
+    float px = tree.root_min.x + (float(hit.cell.x) + (hit.normal.x > 0.0f ? 1.0f : 0.0f)) * size;
+    float py = tree.root_min.y + (float(hit.cell.y) + (hit.normal.y > 0.0f ? 1.0f : 0.0f)) * size;
+    float pz = tree.root_min.z + (float(hit.cell.z) + (hit.normal.z > 0.0f ? 1.0f : 0.0f)) * size;
+    return vec3(hit.normal.x != 0.0f ? px : p.x, hit.normal.y != 0.0f ? py : p.y, hit.normal.z != 0.0f ? pz : p.z);
 }
 
 /// rk_svo_shadowed: whether anything in the octree lies between a hit (point `p` on a face with
 /// normal `face_n`, at `level`) and a light `light_dist` away in unit direction `to_light`
-/// (RK_FLT_MAX for a directional light). A geometry-only rk_svo_trace: no attribute is read.
+/// (RK_FLT_MAX for a directional light); p from rk_svo_hit_point. A geometry-only rk_svo_trace: no
+/// attribute is read.
 RK_INLINE bool rk_svo_shadowed(RK_SVO_BUF buf, rk_svo_tree tree, vec3 p, vec3 face_n, uint level, vec3 to_light,
                                float light_dist)
 {
@@ -134,7 +166,7 @@ struct rk_svo_interface {
 /// rk_svo_interface_at: reflection and refraction of the unit direction `d` at a surface with unit
 /// normal `n` (either orientation; it is turned to face the ray) between media n1 -> n2. The
 /// reflectance is exact Fresnel, or its fast form for external reflection with
-/// RK_SVO_FRESNEL_FAST=1; matched indices give 0 and an unbent ray. Cost: ~1 sqrt, 2 div.
+/// RK_SVO_SECONDARY_FRESNEL_FAST=1; matched indices give 0 and an unbent ray. Cost: ~1 sqrt, 2 div.
 RK_INLINE rk_svo_interface rk_svo_interface_at(vec3 d, vec3 n, float n1, float n2)
 {
     vec3 nf = dot(d, n) > 0.0f ? -n : n;
@@ -145,7 +177,7 @@ RK_INLINE rk_svo_interface rk_svo_interface_at(vec3 d, vec3 n, float n1, float n
     vec3 t;
     r.tir = !rk_refract(d, nf, eta, t);
     r.transmitted = t;
-#if RK_SVO_FRESNEL_FAST
+#if RK_SVO_SECONDARY_FRESNEL_FAST
     r.reflectance = r.tir ? 1.0f : (eta >= 1.0f ? rk_fresnel_dielectric_fast(cos_i, eta) : rk_fresnel_dielectric(cos_i, eta));
 #else
     r.reflectance = r.tir ? 1.0f : rk_fresnel_dielectric(cos_i, eta);
@@ -155,7 +187,7 @@ RK_INLINE rk_svo_interface rk_svo_interface_at(vec3 d, vec3 n, float n1, float n
 
 /// Where rk_svo_march left the medium.
 struct rk_svo_march_result {
-    bool left;            ///< false: RK_SVO_MARCH_MAX_STEPS reached inside the volume
+    bool left;            ///< false: RK_SVO_SECONDARY_MAX_STEPS reached inside the volume
     vec3 exit_point;      ///< on the face of the last occupied voxel
     vec3 exit_normal;     ///< that face's unit axis normal, pointing out of the volume
     vec3 dir;             ///< the direction after refracting out (unit)
@@ -172,6 +204,8 @@ struct rk_svo_march_result {
 /// refracts at the face crossed (or reflects totally); on the way out it refracts into n_out, or
 /// reflects back in under TIR and goes on. Absorption is integrated exactly per voxel segment.
 /// Cost per voxel: one rk_svo_lookup (<= depth + 3 loads), 1 exp (with absorption), ~40 flops.
+/// Precision: positions are held in voxel units of the whole grid (float spacing 2^(depth-24)
+/// voxel), so media are for trees up to depth ~16 (1/256 voxel); deeper ones drift.
 RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_SVO_MEDIA media, vec3 p, vec3 d, uvec3 cell,
                                            float n_in, vec3 absorb_in, float n_out)
 {
@@ -184,6 +218,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
     r.path = 0.0f;
     r.steps = 0u;
     r.interfaces = 0u;
+    if (!(max(max(abs(d.x), abs(d.y)), abs(d.z)) >= RK_FLT_MIN)) return r;  // no direction: stays put
     float voxel = rk_svo_voxel_size(tree, tree.depth);
     float inv_voxel = 1.0f / voxel;
     int side = int(1u << tree.depth);
@@ -194,7 +229,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
     vec3 absorb = absorb_in;
     vec3 dir = d;
     uint cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
-    for (uint it = 0u; it < RK_SVO_MARCH_MAX_STEPS; ++it) {
+    for (uint it = 0u; it < RK_SVO_SECONDARY_MAX_STEPS; ++it) {
         // Distance (voxel units) to the cell's exit plane on each axis.
         vec3 lo = vec3(c);
         float tx = dir.x > 0.0f ? (lo.x + 1.0f - q.x) / dir.x : (dir.x < 0.0f ? (lo.x - q.x) / dir.x : RK_FLT_MAX);
@@ -205,18 +240,18 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         // Through this voxel's medium.
         float seg = t * voxel;
         r.path += seg;
-#if RK_SVO_MEDIA_ABSORPTION
+#if RK_SVO_SECONDARY_ABSORPTION
         r.transmittance *= exp(-absorb * seg);
 #endif
         q = q + dir * t;
-        ivec3 step = ivec3(ax == 0u ? (dir.x > 0.0f ? 1 : -1) : 0, ax == 1u ? (dir.y > 0.0f ? 1 : -1) : 0,
+        ivec3 stp = ivec3(ax == 0u ? (dir.x > 0.0f ? 1 : -1) : 0, ax == 1u ? (dir.y > 0.0f ? 1 : -1) : 0,
                            ax == 2u ? (dir.z > 0.0f ? 1 : -1) : 0);
         // Snap the crossed coordinate onto its plane (no drift over many steps).
-        if (ax == 0u) q.x = float(c.x + (step.x > 0 ? 1 : 0));
-        if (ax == 1u) q.y = float(c.y + (step.y > 0 ? 1 : 0));
-        if (ax == 2u) q.z = float(c.z + (step.z > 0 ? 1 : 0));
-        ivec3 nc = c + step;
-        vec3 face_out = vec3(step);  // normal of the crossed face, pointing into the next cell
+        if (ax == 0u) q.x = float(c.x + (stp.x > 0 ? 1 : 0));
+        if (ax == 1u) q.y = float(c.y + (stp.y > 0 ? 1 : 0));
+        if (ax == 2u) q.z = float(c.z + (stp.z > 0 ? 1 : 0));
+        ivec3 nc = c + stp;
+        vec3 face_out = vec3(stp);  // normal of the crossed face, pointing into the next cell
         // The next voxel's medium (empty or outside the root: the outside medium).
         bool inside_root = nc.x >= 0 && nc.y >= 0 && nc.z >= 0 && nc.x < side && nc.y < side && nc.z < side;
         float n_next = n_out;
@@ -228,7 +263,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
             if (lk.found) {
                 occupied = true;
                 next_attr = lk.attr;
-                vec4 m = RK_SVO_MEDIUM(media, lk.attr);
+                vec4 m = RK_SVO_MEDIUM_(media, lk.attr);
                 n_next = m.x;
                 absorb_next = vec3(m.y, m.z, m.w);
             }
@@ -238,6 +273,10 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
             // The surface belongs to the denser side's voxel: the one entered, or the one left.
             vec3 nrm = RK_SVO_INTERFACE_NORMAL_(media, n_next > n_cur ? next_attr : cur_attr, face_out);
             rk_svo_interface f = rk_svo_interface_at(dir, nrm, n_cur, n_next);
+            // A substituted (smooth) normal may send the reflected ray on across this face or the
+            // refracted one back: then the face itself decides (no zero-length ping-pong).
+            if ((f.tir && dot(f.reflected, face_out) > 0.0f) || (!f.tir && dot(f.transmitted, face_out) <= 0.0f))
+                f = rk_svo_interface_at(dir, face_out, n_cur, n_next);
             r.interfaces += 1u;
             if (f.tir) {
                 dir = f.reflected;  // stays in this voxel, now heading back
@@ -273,20 +312,22 @@ struct rk_svo_refraction {
     vec3 dir;
     vec3 transmittance;   ///< product of (1 - R) at every surface crossed and the absorption inside
     uint interfaces;      ///< surfaces crossed (entries, internal changes, exits)
-    bool complete;        ///< false: max_surfaces or the step bound ended the path inside
+    bool complete;        ///< true: the ray left every object (the path is final); false: the march's
+                          ///< step bound stopped it inside, or max_surfaces ran out (more may follow)
 };
 
 /// rk_svo_refract_through: follows the refracted path of a ray through every refractive object it
 /// meets, up to `max_surfaces` entries (recursion bounded by a parameter; GLSL has none): trace to
 /// the next voxel surface, refract in (reflect under TIR), march through the medium (rk_svo_march),
-/// refract out, repeat. Needs full detail (tree.max_level == depth, no LOD stop: the march starts in
-/// the hit voxel). The reflection at the first surface is returned for the caller to trace
+/// refract out, repeat. It traces at full detail whatever tree.max_level says (the march starts in
+/// the hit voxel; a LOD build's cone is not used). The reflection at the first surface is returned for the caller to trace
 /// (rk_svo_trace) and weigh by `reflectance`. Media with index == n_outside are transparent
 /// (a hollow core and a core of index n_outside give the same path: Wilks's test). Cost: one
 /// rk_svo_trace per surface entered, one lookup per voxel crossed inside.
 RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree tree, RK_SVO_MEDIA media, vec3 origin, vec3 dir,
                                                    float n_outside, uint max_surfaces)
 {
+    tree.max_level = tree.depth;  // the march starts in the hit voxel: full detail
     rk_svo_refraction r;
     r.hit = false;
     r.reflectance = 0.0f;
@@ -301,9 +342,9 @@ RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree t
     for (uint s = 0u; s < max_surfaces; ++s) {
         rk_svo_trace_hit h = rk_svo_trace(buf, tree, r.origin, r.dir, RK_FLT_MAX, vec2(0.0f));
         if (!h.hit) return r;
-        vec3 p = r.origin + r.dir * h.t;
+        vec3 p = rk_svo_hit_point(tree, r.origin, r.dir, h);
         uint hit_attr = rk_svo_trace_attr(buf, tree, h);
-        vec4 m = RK_SVO_MEDIUM(media, hit_attr);
+        vec4 m = RK_SVO_MEDIUM_(media, hit_attr);
         rk_svo_interface f = rk_svo_interface_at(r.dir, RK_SVO_INTERFACE_NORMAL_(media, hit_attr, h.normal), n_outside, m.x);
         if (!r.hit) {
             r.hit = true;
@@ -332,7 +373,7 @@ RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree t
         // Leave along the ray itself (no sideways shift, so a path through empty space between two
         // media follows the same line as one through voxels of index n_outside): far enough to be
         // the secondary offset off the exit face, at most 8 offsets along the ray.
-        float off = max(rk_svo_voxel_size(tree, tree.depth) * 0.015625f, tree.root_size * 4.0e-6f);
+        float off = max(rk_svo_voxel_size(tree, tree.depth) * 0.015625f, tree.root_size * 4.76837158e-7f);
         r.origin = mr.exit_point + r.dir * (off / max(dot(r.dir, mr.exit_normal), 0.125f));
     }
     r.complete = false;

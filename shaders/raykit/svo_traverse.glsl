@@ -22,15 +22,17 @@
 // -0 counts as negative).
 //
 // Features (compile time; the variants line below lists what validation compiles):
-//   RK_SVO_TRACE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
+//   RK_SVO_TRAVERSE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
 //       the ray's footprint cone.x + cone.y * distance (object units; rk_svo_pixel_cone gives the
 //       cone of a pixel). 0 = the cone is ignored and costs nothing.
-//   RK_SVO_TRACE_MAX_ITER (default 16384u): the hard bound on loop iterations. One iteration is one
-//       push, advance or pop; a ray never needs more than ~3 iterations per cell it visits at any
-//       level, which the tests measure (hit.iterations). A ray that reaches the bound reports no
-//       hit with iterations == RK_SVO_TRACE_MAX_ITER.
+//   RK_SVO_TRAVERSE_MAX_ITER (default 16384u): the hard bound on loop iterations. One iteration is one
+//       push, advance or pop. Primary rays take ~13 on average at depth 10; the costliest rays
+//       slide just above a flat surface (~4 per leaf cell crossed: 8,174 at depth 11, 16,382 at
+//       depth 13), so the default suffices up to depth 13; raise it for deeper trees seen at
+//       grazing angles. A ray that reaches the bound reports no hit with iterations equal to it.
+//       The value must be a plain literal (it is pasted into the C++ namespace name).
 //
-// @rk-variants RK_SVO_TRACE_LOD=0 | RK_SVO_TRACE_LOD=1 | RK_SVO_TRACE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRACE_MAX_ITER=64u
+// @rk-variants RK_SVO_TRAVERSE_LOD=0 | RK_SVO_TRAVERSE_LOD=1 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRAVERSE_MAX_ITER=64u
 // @rk-es 310
 #ifndef RK_SVO_TRAVERSE_GLSL
 #define RK_SVO_TRAVERSE_GLSL
@@ -38,17 +40,17 @@
 #include "common.glsl"
 #include "svo_format.glsl"
 
-#ifndef RK_SVO_TRACE_LOD
-#define RK_SVO_TRACE_LOD 0
+#ifndef RK_SVO_TRAVERSE_LOD
+#define RK_SVO_TRAVERSE_LOD 0
 #endif
-#ifndef RK_SVO_TRACE_MAX_ITER
-#define RK_SVO_TRACE_MAX_ITER 16384u
+#ifndef RK_SVO_TRAVERSE_MAX_ITER
+#define RK_SVO_TRAVERSE_MAX_ITER 16384u
 #endif
 
 // Stack entries: one per parent level 0 .. RK_SVO_MAX_DEPTH - 1.
-#define RK_SVO_TRACE_STACK 20
+#define RK_SVO_TRAVERSE_STACK 20
 // Direction components are at least this large after normalisation (2^-21).
-#define RK_SVO_TRACE_DIR_EPS 4.76837158203125e-7f
+#define RK_SVO_TRAVERSE_DIR_EPS 4.76837158203125e-7f
 
 /// The uniforms of one octree, as rk_svo_trace reads them (svo_trace_tree() fills it from an
 /// SvoTree in C++). `max_level` (<= depth) is the deepest level the ray descends to: depth for
@@ -88,7 +90,7 @@ struct rk_svo_trace_hit {
     uint iterations;
 };
 
-/// rk_svo_pixel_cone: the footprint cone of a pixel for RK_SVO_TRACE_LOD: a pinhole camera with
+/// rk_svo_pixel_cone: the footprint cone of a pixel for RK_SVO_TRAVERSE_LOD: a pinhole camera with
 /// vertical field of view `fov_y` (radians) rendering `height` pixels sees a pixel that is
 /// cone.x + cone.y * distance wide (cone.x = 0). `scale` > 1 stops earlier (coarser, faster).
 /// Domain: fov_y in (0, pi), height >= 1. Cost: 1 tan, 1 div.
@@ -125,10 +127,12 @@ RK_INLINE vec3 rk_svo_trace_entry_normal_(vec3 te, vec3 u)
 /// every component misses), t_max >= 0 (negative misses), a tree that passed svo_validate.
 /// Ties: a ray that only touches a voxel along an edge or corner, or runs in a face plane, may or
 /// may not report it (the tests compare with a float64 dense-grid DDA that brackets the answer).
-/// Accuracy: t within about 8 float32 ULPs of the distance to the root plus 1e-6 root sizes.
+/// Accuracy: the hit point lies within 2e-6 root sizes of the node's surface (plus ~8 ULPs of the
+/// origin's distance for far origins); at depth >= 18 a direction component below 2^-21 (tilted,
+/// see above) can move the ray by up to a voxel over the root.
 /// Cost: per iteration ~30 ALU and at most one word load (a descriptor on push or pop, a far slot,
 /// 2 words for a brick); a brick's 4^3 voxels cost no further load. Loop bounded by
-/// RK_SVO_TRACE_MAX_ITER. No attribute is read (rk_svo_trace_attr gives their index).
+/// RK_SVO_TRAVERSE_MAX_ITER. No attribute is read (rk_svo_trace_attr gives their index).
 RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin, vec3 dir, float t_max, vec2 cone)
 {
     rk_svo_trace_hit h;
@@ -151,14 +155,16 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     float len = length(dn);  // in [1, sqrt(3)]
     vec3 u = dn / len;
     // t (caller) = t_cube * t_scale, where t_cube is the distance in root-size units.
-    float t_scale = min(tree.root_size / (m * len), RK_FLT_MAX);
+    // (Divided step by step: m * len overflows for |dir| near FLT_MAX; t then underflows towards 0,
+    // which is the true distance to float precision.)
+    float t_scale = min((tree.root_size / m) / len, RK_FLT_MAX);
     float inv_size = 1.0f / tree.root_size;
     vec3 o = (origin - tree.root_min) * inv_size + vec3(1.0f);
 
     // Tiny components get a tiny value of the same sign (sign bit: -0 is negative).
-    if (abs(u.x) < RK_SVO_TRACE_DIR_EPS) u.x = (floatBitsToUint(u.x) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
-    if (abs(u.y) < RK_SVO_TRACE_DIR_EPS) u.y = (floatBitsToUint(u.y) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
-    if (abs(u.z) < RK_SVO_TRACE_DIR_EPS) u.z = (floatBitsToUint(u.z) & 0x80000000u) != 0u ? -RK_SVO_TRACE_DIR_EPS : RK_SVO_TRACE_DIR_EPS;
+    if (abs(u.x) < RK_SVO_TRAVERSE_DIR_EPS) u.x = (floatBitsToUint(u.x) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
+    if (abs(u.y) < RK_SVO_TRAVERSE_DIR_EPS) u.y = (floatBitsToUint(u.y) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
+    if (abs(u.z) < RK_SVO_TRAVERSE_DIR_EPS) u.z = (floatBitsToUint(u.z) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
 
     // Clip to the root [1, 2]^3 and move the origin to the entry point.
     vec3 inv_u = vec3(1.0f) / u;
@@ -168,7 +174,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     vec3 thi = max(ta, tb);
     float t_enter = max(max(max(tlo.x, tlo.y), tlo.z), 0.0f);
     float t_leave = min(min(thi.x, thi.y), thi.z);
-    float t_lim = min(t_max / t_scale, RK_FLT_MAX);
+    float t_lim = t_max > 0.0f ? min(t_max * (m / tree.root_size) * len, RK_FLT_MAX) : 0.0f;
     if (!(t_enter <= t_leave) || !(t_enter <= t_lim)) return h;
     o = o + u * t_enter;
     t_lim = t_lim - t_enter;
@@ -187,7 +193,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     uint b = rk_svo_brick_levels(tree.depth);
     uint top = tree.depth - b;
     uint leaf = min(tree.max_level, tree.depth);
-#if RK_SVO_TRACE_LOD
+#if RK_SVO_TRAVERSE_LOD
     // Footprint in cube units: cone.x / root_size + cone.y * t_cube * root_size / root_size.
     float lod_bias = max(cone.x, 0.0f) * inv_size;
     float lod_slope = max(cone.y, 0.0f);
@@ -208,7 +214,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     }
     uint pmask = rk_svo_trace_child_mask_(0u, top, b, pdesc, bmask, 0u);
     bool root_stop = leaf == 0u;
-#if RK_SVO_TRACE_LOD
+#if RK_SVO_TRAVERSE_LOD
     root_stop = root_stop || 1.0f <= lod_bias + lod_slope * (t_enter + t_min);
 #endif
     if (root_stop) {
@@ -220,8 +226,8 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
         return h;
     }
 
-    uint stk_node[RK_SVO_TRACE_STACK];
-    float stk_tmax[RK_SVO_TRACE_STACK];
+    uint stk_node[RK_SVO_TRAVERSE_STACK];
+    float stk_tmax[RK_SVO_TRAVERSE_STACK];
 
     // The current cell: a child of the parent, `scale` = 23 - its level, size 2^(scale - 23),
     // minimum corner `pos` (mirrored), child slot `idx` (mirrored; the format's index is idx ^ flip).
@@ -235,7 +241,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
 
     uint iter = 0u;
     bool found = false;
-    for (; iter < RK_SVO_TRACE_MAX_ITER; ++iter) {
+    for (; iter < RK_SVO_TRAVERSE_MAX_ITER; ++iter) {
         uint lc = uint(23 - scale);  // level of the current cell
         vec3 tc = pos * coef - bias;  // exit planes of the current cell
         float tc_max = min(min(tc.x, tc.y), tc.z);
@@ -244,7 +250,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
             float tv_max = min(t_hi, tc_max);
             if (t_min <= tv_max) {
                 bool stop = lc >= leaf;
-#if RK_SVO_TRACE_LOD
+#if RK_SVO_TRAVERSE_LOD
                 stop = stop || size <= lod_bias + lod_slope * (t_enter + t_min);
 #endif
                 if (stop) {
@@ -281,20 +287,20 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
             }
         }
         // Advance to the next cell along the ray; every axis whose exit plane ties steps.
-        uint step = 0u;
-        if (tc.x <= tc_max) { step |= 1u; pos.x -= size; }
-        if (tc.y <= tc_max) { step |= 2u; pos.y -= size; }
-        if (tc.z <= tc_max) { step |= 4u; pos.z -= size; }
+        uint stp = 0u;
+        if (tc.x <= tc_max) { stp |= 1u; pos.x -= size; }
+        if (tc.y <= tc_max) { stp |= 2u; pos.y -= size; }
+        if (tc.z <= tc_max) { stp |= 4u; pos.z -= size; }
         // Never backwards: for an axis almost parallel to the ray, plane distances carry rounding
         // of ~2^-22 / |dir| (a position error of ~2^-22), which can put tc_max below t_min.
         t_min = max(t_min, tc_max);
-        idx ^= step;
-        if ((idx & step) != 0u) {
+        idx ^= stp;
+        if ((idx & stp) != 0u) {
             // Left the parent: pop to the level of the highest differing address bit.
             uint diff = 0u;
-            if ((step & 1u) != 0u) diff |= floatBitsToUint(pos.x) ^ floatBitsToUint(pos.x + size);
-            if ((step & 2u) != 0u) diff |= floatBitsToUint(pos.y) ^ floatBitsToUint(pos.y + size);
-            if ((step & 4u) != 0u) diff |= floatBitsToUint(pos.z) ^ floatBitsToUint(pos.z + size);
+            if ((stp & 1u) != 0u) diff |= floatBitsToUint(pos.x) ^ floatBitsToUint(pos.x + size);
+            if ((stp & 2u) != 0u) diff |= floatBitsToUint(pos.y) ^ floatBitsToUint(pos.y + size);
+            if ((stp & 4u) != 0u) diff |= floatBitsToUint(pos.z) ^ floatBitsToUint(pos.z + size);
             scale = findMSB(diff);
             if (scale >= 23 || scale < 23 - int(leaf)) break;  // left the root
             size = uintBitsToFloat(uint(scale + 104) << 23u);  // 2^(scale - 23)

@@ -81,7 +81,7 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
     src += "  bool sh = rk_svo_shadowed(0u, tr, rk_rays[4u * i + 2u].xyz, vec3(0.0, 1.0, 0.0), tr.depth, rk_rays[4u * i + 3u].xyz, 3.0e38);\n";
     src += "  rk_out[3u * i] = vec4(r.origin, r.transmittance.x);\n";
     src += "  rk_out[3u * i + 1u] = vec4(r.dir, r.reflectance);\n";
-    src += "  rk_out[3u * i + 2u] = vec4(uintBitsToFloat(r.interfaces), uintBitsToFloat(r.hit ? 1u : 0u), uintBitsToFloat(sh ? 1u : 0u), 0.0);\n}\n";
+    src += "  rk_out[3u * i + 2u] = vec4(float(r.interfaces), r.hit ? 1.0 : 0.0, sh ? 1.0 : 0.0, 0.0);\n}\n";  // small integers, exact
     src = inject_shader_defines(src, {{"RK_SVO_WORDS_BINDING", "0"}});
     src = resolve_shader_includes(src, "svo_secondary.comp", parity::shader_dir(), {parity::shader_dir()});
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
@@ -115,10 +115,7 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
         const bool sh = rk_svo_shadowed(words.data(), tree, glm::vec3(rays[size_t(4 * i + 2)]), glm::vec3(0.0f, 1.0f, 0.0f), tree.depth,
                                         glm::vec3(rays[size_t(4 * i + 3)]), 3.0e38f);
         const glm::vec4 a = g[size_t(3 * i)], b = g[size_t(3 * i + 1)], c = g[size_t(3 * i + 2)];
-        uint32_t gi, gh, gs;
-        std::memcpy(&gi, &c.x, 4);
-        std::memcpy(&gh, &c.y, 4);
-        std::memcpy(&gs, &c.z, 4);
+        const uint32_t gi = uint32_t(c.x), gh = uint32_t(c.y), gs = uint32_t(c.z);
         shadow_diff += (gs != 0u) != sh;
         shadowed += sh;
         hits += r.hit;
@@ -127,6 +124,9 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
         const bool same = (gh != 0u) == r.hit && gi == r.interfaces && de < 1e-3 &&
                           glm::length(glm::vec3(a) - r.origin) < 0.05f;
         if (!same) {
+            // Allowed only as a tie: both builds hit, and they part at an edge or corner, which
+            // shows as a different number of surfaces or a direction change of a face's worth.
+            EXPECT_EQ(gh != 0u, r.hit) << i;
             ++ties;
             continue;
         }
@@ -140,8 +140,8 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
     EXPECT_GT(hits, N / 2);
     EXPECT_GT(deep, N / 10);
     EXPECT_LE(ties, N / 100);
-    EXPECT_LT(worst_dir, 1e-4);
+    EXPECT_LT(worst_dir, 2e-5);  // measured 5.4e-6
     EXPECT_LT(worst_T, 5e-4);  // GLSL exp() is looser than libm; products over up to ~100 voxels
-    EXPECT_LE(shadow_diff, N / 1000);
+    EXPECT_LE(shadow_diff, N / 1000);  // measured 0
     EXPECT_GT(shadowed, N / 10);
 }

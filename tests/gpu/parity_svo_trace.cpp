@@ -1,4 +1,4 @@
-// GPU parity for shaders/raykit/svo_traverse.glsl (RK_SVO_TRACE_LOD=0; the LOD build is in
+// GPU parity for shaders/raykit/svo_traverse.glsl (RK_SVO_TRAVERSE_LOD=0; the LOD build is in
 // parity_svo_trace_lod.cpp): rk_svo_trace and rk_svo_trace_attr on the driver against the C++ build,
 // over random trees (depths 1..16, forced far pointers) and voxelised meshes, every adversarial ray
 // family of svo_trace_rays.hpp, words from an SSBO and from the R32UI texture layout. Same node for

@@ -1,8 +1,8 @@
-// GPU parity for shaders/raykit/svo_traverse.glsl built with RK_SVO_TRACE_LOD=1 (level-of-detail
-// stops), in a translation unit of its own: parity_svo_trace.cpp links the RK_SVO_TRACE_LOD=0 C++
+// GPU parity for shaders/raykit/svo_traverse.glsl built with RK_SVO_TRAVERSE_LOD=1 (level-of-detail
+// stops), in a translation unit of its own: parity_svo_trace.cpp links the RK_SVO_TRAVERSE_LOD=0 C++
 // build into the same executable, and both must keep their own behaviour (checked below: this
 // build stops early where the other cannot).
-#define RK_SVO_TRACE_LOD 1
+#define RK_SVO_TRAVERSE_LOD 1
 #include <random>
 
 #include "raykit/svo_build.hpp"
@@ -13,7 +13,7 @@ using namespace raykit;
 
 TEST(GpuParity, SvoTraceLevelOfDetail)
 {
-    static_assert(RK_SVO_TRACE_LOD == 1, "this translation unit tests the LOD build");
+    static_assert(RK_SVO_TRAVERSE_LOD == 1, "this translation unit tests the LOD build");
     SvoBuildOptions opt;
     opt.depth = 10;
     opt.attributes = RK_SVO_ATTR_COLOR;
