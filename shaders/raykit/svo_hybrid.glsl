@@ -14,7 +14,10 @@
 // The thesis's method, kept: the point whose depth is written is the ray's entry point into the
 // voxel (the hit distance of rk_svo_trace), projected "as if it was a vertex", i.e. through the
 // same object-to-clip matrix and perspective division as the rasteriser, so a voxel face and a
-// triangle in the same plane get the same depth up to float rounding. Not kept: the per-iteration
+// triangle in the same plane get the same depth up to float rounding, provided the rasteriser
+// projects with the same float matrix (svo_hybrid_view composes P·V·M in double once; an engine that
+// multiplies the matrices in float, or in the vertex shader, differs by that product's rounding,
+// a few more 2^-24). Not kept: the per-iteration
 // depth comparison; instead rk_svo_depth_to_t turns the depth already in the buffer into the ray's
 // t_max, so the traversal never descends into anything behind it.
 //
