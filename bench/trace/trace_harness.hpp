@@ -94,6 +94,9 @@ struct TracerSpec {
     /// conservative surface voxelisation has more hits: its silhouettes are up to a voxel wider.)
     double hit_tol_pct = -1.0;
     double dt_tol_vox = -1.0;
+    /// One-sided floor on hit_diff_pct (negative = fewer hits than the reference), when tighter
+    /// than -hit_tol: a conservative tracer must not lose hits. Positive: unused.
+    double hit_floor_pct = 1.0;
 };
 
 struct Options {
@@ -295,7 +298,7 @@ inline void run_row(benchmark::State& st, const std::string& row, const Scene& s
     st.counters["pix_diff_pct"] = 100.0 * static_cast<double>(a.differ) / rays;
     const double hit_tol = spec.hit_tol_pct >= 0.0 ? spec.hit_tol_pct : options().hit_tol_pct;
     const double dt_tol = spec.dt_tol_vox >= 0.0 ? spec.dt_tol_vox : options().dt_tol_vox;
-    bool ok = std::fabs(a.hit_diff_pct()) <= hit_tol;
+    bool ok = std::fabs(a.hit_diff_pct()) <= hit_tol && (spec.hit_floor_pct > 0.0 || a.hit_diff_pct() >= spec.hit_floor_pct);
     char msg[256];
     if (depth >= 0) {
         const double dt_vox = a.mean_dt() / s.cube.voxel(depth);

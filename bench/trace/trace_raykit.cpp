@@ -52,9 +52,11 @@ Prepared prepare(const Scene& s, int depth)
 // Tolerances: a surface voxelisation marks every voxel the surface touches, so its shell reaches up
 // to a voxel outside the surface: silhouettes widen by up to a voxel (more hits: +14% on the torus
 // and +37% on the thin-limbed figure at depth 6 in the 64 x 64 smoke frame, a few % at depth 10 in
-// 512 x 512) and hits come up to sqrt(3) voxels early (about -1.0 to -1.5 measured).
+// 512 x 512) and hits come up to sqrt(3) voxels early (about -1.0 to -1.5 measured). It never loses
+// hits, though: fewer than the reference's minus 3% fails the row, so a traversal that misses
+// surfaces cannot pass the smoke test.
 const TracerRegistrar reg(TracerSpec{"raykit", "raykit rk_svo_trace (C++ build of svo_traverse.glsl), geometry only", 30, true,
-                                     {8, 9, 10, 11, 12}, false, prepare, 50.0, 2.0});
+                                     {8, 9, 10, 11, 12}, false, prepare, 50.0, 2.0, -3.0});
 
 }  // namespace
 }  // namespace rktrace
