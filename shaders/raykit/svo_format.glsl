@@ -144,16 +144,22 @@ RK_INLINE uint rk_svo_brick_rank(uvec2 mask, uint bit)
     return uint(bitCount(below_lo)) + uint(bitCount(below_hi));
 }
 
+/// rk_svo_brick_nonzero_bytes_: internal. Bit k (0..3) set where byte k of w is non-zero: each
+/// byte's bits are ORed into its lowest bit, and one multiply gathers those four bits into the top
+/// byte (bit 8k lands on bit 24 + k; no other product term reaches bits 24..27, and none carries).
+RK_INLINE uint rk_svo_brick_nonzero_bytes_(uint w)
+{
+    uint t = w | (w >> 4u);
+    t = t | (t >> 2u);
+    t = t | (t >> 1u);
+    return (((t & 0x01010101u) * 0x01020408u) >> 24u) & 0xFu;
+}
+
 /// rk_svo_brick_submask: the 8-bit mask of a 4^3 brick's non-empty level-(depth-1) nodes (one per
-/// mask byte). Exact. Cost: ~16 integer ops.
+/// mask byte). Exact. Cost: ~14 integer ops, no branch.
 RK_INLINE uint rk_svo_brick_submask(uvec2 mask)
 {
-    uint m = 0u;
-    for (uint k = 0u; k < 4u; ++k) {
-        if (((mask.x >> (8u * k)) & 0xFFu) != 0u) m |= 1u << k;
-        if (((mask.y >> (8u * k)) & 0xFFu) != 0u) m |= 1u << (k + 4u);
-    }
-    return m;
+    return rk_svo_brick_nonzero_bytes_(mask.x) | (rk_svo_brick_nonzero_bytes_(mask.y) << 4u);
 }
 
 /// rk_svo_brick_voxel_count: voxels of a brick. Exact. Cost: 2 bitCount.

@@ -100,11 +100,12 @@ RK_INLINE vec2 rk_svo_pixel_cone(float fov_y, float height, float scale)
 }
 
 /// rk_svo_trace_child_mask_: internal. The child mask of the current parent: its descriptor's mask
-/// above the bricks, the brick's sub-node mask, or the byte of the sub-node `handle` in the brick.
-RK_INLINE uint rk_svo_trace_child_mask_(uint lp, uint top, uint b, uint pdesc, uvec2 bmask, uint handle)
+/// above the bricks, the brick's sub-node mask `bsub` (computed once per brick), or the byte of the
+/// sub-node `handle` in the brick.
+RK_INLINE uint rk_svo_trace_child_mask_(uint lp, uint top, uint pdesc, uvec2 bmask, uint bsub, uint handle)
 {
     if (lp < top) return pdesc & RK_SVO_CHILD_MASK;
-    if (lp == top) return b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
+    if (lp == top) return bsub;
     uint w = handle < 4u ? bmask.x : bmask.y;
     return (w >> (8u * (handle & 3u))) & 0xFFu;
 }
@@ -205,14 +206,16 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
     uint handle = 0u;
     uint pdesc = 0u;
     uvec2 bmask = uvec2(0u);
+    uint bsub = 0u;  // the current brick's level-(depth-1) mask (its own children's mask)
     uint brick = 0u;
     if (top > 0u) {
         pdesc = RK_SVO_READ(buf, 0u);
     } else {
         uint w0 = rk_svo_word_of(0u, tree.desc_words);
         bmask = uvec2(RK_SVO_READ(buf, w0), RK_SVO_READ(buf, w0 + 1u));
+        bsub = b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
     }
-    uint pmask = rk_svo_trace_child_mask_(0u, top, b, pdesc, bmask, 0u);
+    uint pmask = rk_svo_trace_child_mask_(0u, top, pdesc, bmask, bsub, 0u);
     bool root_stop = leaf == 0u;
 #if RK_SVO_TRAVERSE_LOD
     root_stop = root_stop || 1.0f <= lod_bias + lod_slope * (t_enter + t_min);
@@ -269,12 +272,13 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
                     } else {
                         uint w = rk_svo_word_of(handle, tree.desc_words);
                         bmask = uvec2(RK_SVO_READ(buf, w), RK_SVO_READ(buf, w + 1u));
+                        bsub = b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
                         brick = handle;
                     }
                 } else {
                     handle = c;  // a level-(depth-1) node inside the brick
                 }
-                pmask = rk_svo_trace_child_mask_(lc, top, b, pdesc, bmask, handle);
+                pmask = rk_svo_trace_child_mask_(lc, top, pdesc, bmask, bsub, handle);
                 scale -= 1;
                 size *= 0.5f;
                 idx = 0u;
@@ -308,7 +312,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
             handle = stk_node[lp];
             t_hi = stk_tmax[lp];
             if (lp < top) pdesc = RK_SVO_READ(buf, handle);
-            pmask = rk_svo_trace_child_mask_(lp, top, b, pdesc, bmask, handle);
+            pmask = rk_svo_trace_child_mask_(lp, top, pdesc, bmask, bsub, handle);
             uint sx = floatBitsToUint(pos.x) >> uint(scale);
             uint sy = floatBitsToUint(pos.y) >> uint(scale);
             uint sz = floatBitsToUint(pos.z) >> uint(scale);
