@@ -512,7 +512,8 @@ TEST(Fresnel, LutAtTexelCentresAndInterpolation)
         const double bound = size == 64 ? 2.3e-2 : size == 128 ? 1.15e-2 : 5.7e-3;
         EXPECT_LT(worst_interp, bound);
     }
-    EXPECT_THROW(bake_fresnel_lut_1d(1, eta, FresnelLutMode::single_surface), std::invalid_argument);
+    EXPECT_TRUE(bake_fresnel_lut_1d(1, eta, FresnelLutMode::single_surface).empty());
+    EXPECT_TRUE(bake_fresnel_lut_1d(65537, eta, FresnelLutMode::single_surface).empty());
     const auto two = bake_fresnel_lut_1d(16, eta, FresnelLutMode::glazing_polarised, 2.0f);
     EXPECT_NEAR(two.back(), rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(31.0f / 32.0f, eta), 2.0f), 1e-7);
 }

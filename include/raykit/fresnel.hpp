@@ -4,7 +4,6 @@
 // docs/dialect.md); tests/gpu_parity_test.cpp checks both builds agree on a real driver.
 #pragma once
 
-#include <stdexcept>
 #include <vector>
 
 #include "raykit/common.hpp"
@@ -40,12 +39,11 @@ inline float fresnel_lut_value(float cos_i, float eta, FresnelLutMode mode, floa
 /// adds 4.9e-4 relative rounding). Linear-interpolation error for n = 1.52, slab_polarised:
 /// 2.3e-2 at 64 texels, 1.1e-2 at 128, 5.7e-3 at 256, all from the steep grazing end (cos < 0.1;
 /// see test_fresnel). Use the analytic rk_fresnel_window where grazing views matter.
-/// Throws std::invalid_argument for size < 2 or size > 65536. Cost: one exact evaluation per texel.
+/// Returns an empty vector for size < 2 or size > 65536 (no exception: engines build with
+/// -fno-exceptions). Cost: one exact evaluation per texel.
 inline std::vector<float> bake_fresnel_lut_1d(int size, float eta, FresnelLutMode mode, float panes = 1.0f)
 {
-    if (size < 2 || size > 65536) {
-        throw std::invalid_argument("raykit::bake_fresnel_lut_1d: size must be in [2, 65536]");
-    }
+    if (size < 2 || size > 65536) return {};
     std::vector<float> lut(static_cast<size_t>(size));
     for (int i = 0; i < size; ++i) {
         float c = (static_cast<float>(i) + 0.5f) / static_cast<float>(size);
