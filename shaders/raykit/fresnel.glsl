@@ -113,8 +113,10 @@ RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0, vec3 f90)
 
 /// rk_fresnel_dielectric_sp: exact reflectances (Rs, Rp) of the s- and p-polarised components at
 /// a smooth dielectric interface, and (1, 1) under total internal reflection.
-/// Written in the cancellation-free cos form: with g^2 = eta^2 - 1 + cos^2,
-///   rs = (1 - eta^2) / (cos + g)^2,   rp = (eta^2 - 1)((eta^2 + 1) cos^2 - 1) / (eta^2 cos + g)^2,
+/// Written in the cancellation-free cos form: with g^2 = eta^2 - sin^2 = eta^2 - 1 + cos^2,
+///   rs = (1 - eta^2) / (cos + g)^2,   rp = (eta^2 - 1)(eta^2 cos^2 - sin^2) / (eta^2 cos + g)^2,
+/// g^2 formed as eta^2 - sin^2 near normal incidence and as (eta^2 - 1) + cos^2 elsewhere, so it
+/// holds over the whole eta domain [1/4096, 4096] (the single form lost Rp at eta << 1, cos ~ 1),
 /// which is algebraically the textbook (cos_i - eta cos_t)/(cos_i + eta cos_t) pair but has no
 /// 0/0 at normal incidence and keeps full relative precision at matched indices (eta -> 1), where
 /// it returns exactly 0 (including the grazing limit cos = 0, eta = 1).
@@ -129,15 +131,20 @@ RK_INLINE vec2 rk_fresnel_dielectric_sp(float cos_i, float eta)
 {
     float c = rk_saturate(cos_i);
     float e = rk_fresnel_clamp_eta(eta);
+    float e2 = e * e;
     float e2m1 = (e - 1.0f) * (e + 1.0f);  // eta^2 - 1 without cancellation near eta = 1
-    float g2 = e2m1 + c * c;
+    float s2 = (1.0f - c) * (1.0f + c);    // sin^2 without cancellation near normal incidence
+    // g^2 = eta^2 - sin^2, formed where it does not cancel: near normal incidence (small sin^2)
+    // as eta^2 - sin^2 (eta^2 - 1 + cos^2 would subtract ~1 from ~1 for small eta), elsewhere as
+    // (eta^2 - 1) + cos^2 (exact at matched indices).
+    float g2 = s2 < 0.5f ? e2 - s2 : e2m1 + c * c;
     if (g2 < 0.0f) {
         return vec2(1.0f);  // total internal reflection
     }
     float g = sqrt(g2);
-    float e2 = e * e;
     float rs = -e2m1 / max(rk_sqr(c + g), RK_FLT_MIN);
-    float rp = e2m1 * ((e2 + 1.0f) * c * c - 1.0f) / max(rk_sqr(e2 * c + g), RK_FLT_MIN);
+    // (eta^2 + 1) cos^2 - 1 = eta^2 cos^2 - sin^2: no 1 - 1 near normal incidence.
+    float rp = e2m1 * (e2 * c * c - s2) / max(rk_sqr(e2 * c + g), RK_FLT_MIN);
     return vec2(min(rs * rs, 1.0f), min(rp * rp, 1.0f));
 }
 
