@@ -14,6 +14,7 @@
 #include "raykit/interior_mapping.hpp"
 #include "raykit/interior_surface.hpp"
 #include "raykit/paraboloid.hpp"
+#include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"

@@ -13,13 +13,9 @@
 #include <utility>
 #include <vector>
 
-namespace raykit {
+#include "raykit/shader_define.hpp"
 
-/// A feature macro to inject: `#define name value`.
-struct ShaderDefine {
-    std::string name;
-    std::string value = "1";
-};
+namespace raykit {
 
 namespace detail {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "raykit/color.hpp"
-#include "raykit/shader_source.hpp"
+#include "raykit/shader_define.hpp"
 
 namespace raykit {
 #include "raykit/tonemap.glsl"
