@@ -176,6 +176,43 @@ void main()
 )";
 }
 
+/// An octree's geometry words (SvoTree::gpu_words()) where svo_format.glsl reads them, bound while
+/// alive: an SSBO at `binding` (RK_SVO_BUFFER_TEXTURE=0), or an R32UI 2D texture on texture unit
+/// `binding`, RK_SVO_TEXTURE_WIDTH texels per row, zero-padded (RK_SVO_BUFFER_TEXTURE=1, for
+/// GLSL ES 3.0 / WebGL 2).
+class SvoWordsGl {
+public:
+    SvoWordsGl(const std::vector<uint32_t>& words, bool texture, GLuint binding = 0)
+    {
+        if (texture) {
+            const glm::uvec2 ext = raykit::svo_texture_extent(words.size());
+            std::vector<uint32_t> padded(static_cast<size_t>(ext.x) * ext.y, 0u);
+            std::copy(words.begin(), words.end(), padded.begin());
+            glCreateTextures(GL_TEXTURE_2D, 1, &tex_);
+            glTextureStorage2D(tex_, 1, GL_R32UI, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y));
+            // Integer textures are incomplete (texelFetch returns 0) with the default mipmap filter.
+            glTextureParameteri(tex_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(tex_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTextureSubImage2D(tex_, 0, 0, 0, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y), GL_RED_INTEGER,
+                                GL_UNSIGNED_INT, padded.data());
+            glBindTextureUnit(binding, tex_);
+        } else {
+            buffer_ = make_buffer(words.size() * 4, words.data());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_);
+        }
+    }
+    ~SvoWordsGl()
+    {
+        if (buffer_) glDeleteBuffers(1, &buffer_);
+        if (tex_) glDeleteTextures(1, &tex_);
+    }
+    SvoWordsGl(const SvoWordsGl&) = delete;
+    SvoWordsGl& operator=(const SvoWordsGl&) = delete;
+
+private:
+    GLuint buffer_ = 0, tex_ = 0;
+};
+
 /// A packed octree on the GPU and its draw call.
 class SvoGlObject {
 public:

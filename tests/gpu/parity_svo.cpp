@@ -11,6 +11,7 @@
 #include "parity.hpp"
 #include "raykit/svo_build.hpp"
 #include "reference/svo_meshes.hpp"
+#include "rk_svo_gl.hpp"
 
 using namespace raykit;
 using parity::Domain;
@@ -102,23 +103,7 @@ std::vector<uint32_t> gpu_lookup(const SvoTree& t, const std::vector<glm::uvec4>
     src = inject_shader_defines(src, defs);
     src = resolve_shader_includes(src, "svo_lookup.comp", parity::shader_dir(), {parity::shader_dir()});
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
-    GLuint bwords = 0, tex = 0;
-    if (texture) {
-        const glm::uvec2 ext = svo_texture_extent(words.size());
-        std::vector<uint32_t> padded(static_cast<size_t>(ext.x) * ext.y, 0u);
-        std::copy(words.begin(), words.end(), padded.begin());
-        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-        glTextureStorage2D(tex, 1, GL_R32UI, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y));
-        // Integer textures are incomplete (texelFetch returns 0) with the default mipmap filter.
-        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureSubImage2D(tex, 0, 0, 0, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y), GL_RED_INTEGER, GL_UNSIGNED_INT,
-                            padded.data());
-        glBindTextureUnit(0, tex);
-    } else {
-        bwords = rkgl::make_buffer(words.size() * 4, words.data());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bwords);
-    }
+    const rkgl::SvoWordsGl bound_words(words, texture);
     GLuint bcells = rkgl::make_buffer(cells.size() * sizeof(glm::uvec4), cells.data());
     GLuint bout = rkgl::make_buffer(cells.size() * 12, nullptr);
     glUseProgram(prog);
@@ -130,9 +115,8 @@ std::vector<uint32_t> gpu_lookup(const SvoTree& t, const std::vector<glm::uvec4>
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<uint32_t> out(cells.size() * 3);
     glGetNamedBufferSubData(bout, 0, static_cast<GLsizeiptr>(out.size() * 4), out.data());
-    GLuint bufs[3] = {bwords, bcells, bout};
-    glDeleteBuffers(3, bufs);
-    if (tex) glDeleteTextures(1, &tex);
+    GLuint bufs[2] = {bcells, bout};
+    glDeleteBuffers(2, bufs);
     glDeleteProgram(prog);
     return out;
 }

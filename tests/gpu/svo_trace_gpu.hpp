@@ -15,6 +15,7 @@
 #include "parity.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "svo_trace_rays.hpp"
+#include "rk_svo_gl.hpp"
 
 namespace svotrace_gpu {
 
@@ -62,22 +63,7 @@ inline std::vector<Out> gpu_trace(const raykit::SvoTree& t, const raykit::rk_svo
     src = inject_shader_defines(src, defs);
     src = resolve_shader_includes(src, "svo_trace.comp", parity::shader_dir(), {parity::shader_dir()});
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
-    GLuint bwords = 0, tex = 0;
-    if (texture) {
-        const glm::uvec2 ext = svo_texture_extent(words.size());
-        std::vector<uint32_t> padded(static_cast<size_t>(ext.x) * ext.y, 0u);
-        std::copy(words.begin(), words.end(), padded.begin());
-        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-        glTextureStorage2D(tex, 1, GL_R32UI, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y));
-        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureSubImage2D(tex, 0, 0, 0, static_cast<GLsizei>(ext.x), static_cast<GLsizei>(ext.y), GL_RED_INTEGER,
-                            GL_UNSIGNED_INT, padded.data());
-        glBindTextureUnit(0, tex);
-    } else {
-        bwords = rkgl::make_buffer(words.size() * 4, words.data());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bwords);
-    }
+    const rkgl::SvoWordsGl bound_words(words, texture);
     std::vector<glm::vec4> rv;
     rv.reserve(2 * rays.size());
     for (const svotrace::Ray& r : rays) {
@@ -97,9 +83,8 @@ inline std::vector<Out> gpu_trace(const raykit::SvoTree& t, const raykit::rk_svo
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<Out> out(rays.size());
     glGetNamedBufferSubData(bout, 0, static_cast<GLsizeiptr>(out.size() * sizeof(Out)), out.data());
-    GLuint bufs[3] = {bwords, brays, bout};
-    glDeleteBuffers(3, bufs);
-    if (tex) glDeleteTextures(1, &tex);
+    GLuint bufs[2] = {brays, bout};
+    glDeleteBuffers(2, bufs);
     glDeleteProgram(prog);
     return out;
 }
