@@ -61,40 +61,6 @@ Quartiles quartiles(std::vector<double> v)
     return q;
 }
 
-class Target {
-public:
-    Target(int w, int h) : w_(w), h_(h)
-    {
-        glCreateTextures(GL_TEXTURE_2D, 1, &color_);
-        glTextureStorage2D(color_, 1, GL_RGBA8, w, h);
-        glCreateRenderbuffers(1, &depth_);
-        glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, w, h);
-        glCreateFramebuffers(1, &fbo_);
-        glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
-        glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glViewport(0, 0, w, h);
-    }
-    ~Target()
-    {
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glDeleteFramebuffers(1, &fbo_);
-        glDeleteRenderbuffers(1, &depth_);
-        glDeleteTextures(1, &color_);
-    }
-    std::vector<unsigned char> read() const
-    {
-        std::vector<unsigned char> px(size_t(w_) * size_t(h_) * 4);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-        return px;
-    }
-
-private:
-    int w_, h_;
-    GLuint fbo_ = 0, color_ = 0, depth_ = 0;
-};
-
 struct Mesh {
     std::string name;
     raykit::SvoMeshData data;
@@ -180,7 +146,7 @@ int main(int argc, char** argv)
             }
             rkgl::SvoGlObject obj(tree, RAYKIT_SHADER_DIR);
             for (const auto& [w, h] : sizes) {
-                Target target(w, h);
+                rkgl::DepthTarget target(w, h);
                 const float fov = 0.8f;
                 const glm::mat4 proj = raykit::svo_perspective(fov, float(w) / float(h), 0.05f, 100.0f, raykit::SvoDepthConvention::gl_minus_one_to_one);
                 glEnable(GL_DEPTH_TEST);
@@ -212,7 +178,7 @@ int main(int argc, char** argv)
                 std::vector<std::vector<unsigned char>> img(5);
                 for (int k = 0; k < 5; ++k) {
                     draw(k);
-                    img[size_t(k)] = target.read();
+                    img[size_t(k)] = target.read_rgba8(false);
                 }
                 std::vector<std::vector<double>> ms(5), ratio(5);
                 for (int round = 0; round < rounds; ++round) {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -175,6 +176,76 @@ void main()
 }
 )";
 }
+
+/// The render target of a hybrid frame: RGBA8 colour and 32-bit float depth, plus a second depth
+/// texture that copy_depth() fills, for the voxel pass's early termination (SvoDrawParams::
+/// depth_texture) while the depth buffer itself stays bound. Bound for drawing on construction and
+/// by bind(); the default framebuffer is bound again on destruction.
+class DepthTarget {
+public:
+    DepthTarget(int width, int height) : w_(width), h_(height)
+    {
+        glCreateTextures(GL_TEXTURE_2D, 1, &color_);
+        glTextureStorage2D(color_, 1, GL_RGBA8, width, height);
+        glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
+        glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
+        glCreateTextures(GL_TEXTURE_2D, 1, &depth_copy_);
+        glTextureStorage2D(depth_copy_, 1, GL_DEPTH_COMPONENT32F, width, height);
+        glTextureParameteri(depth_copy_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(depth_copy_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &fbo_);
+        glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
+        glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
+        bind();
+    }
+    ~DepthTarget()
+    {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDeleteFramebuffers(1, &fbo_);
+        GLuint t[3] = {color_, depth_, depth_copy_};
+        glDeleteTextures(3, t);
+    }
+    DepthTarget(const DepthTarget&) = delete;
+    DepthTarget& operator=(const DepthTarget&) = delete;
+
+    void bind() const
+    {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glViewport(0, 0, w_, h_);
+    }
+    /// Copies the depth buffer into the copy texture and returns that texture.
+    GLuint copy_depth() const
+    {
+        glCopyImageSubData(depth_, GL_TEXTURE_2D, 0, 0, 0, 0, depth_copy_, GL_TEXTURE_2D, 0, 0, 0, 0, w_, h_, 1);
+        return depth_copy_;
+    }
+    GLuint fbo() const { return fbo_; }
+    /// The colour pixels, bottom row first (GL order) or top row first (PNG order). Binds the target.
+    std::vector<unsigned char> read_rgba8(bool top_row_first) const
+    {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        std::vector<unsigned char> px(size_t(w_) * size_t(h_) * 4);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+        if (!top_row_first) return px;
+        std::vector<unsigned char> out(px.size());
+        const size_t row = size_t(w_) * 4;
+        for (int y = 0; y < h_; ++y) std::memcpy(&out[size_t(y) * row], &px[size_t(h_ - 1 - y) * row], row);
+        return out;
+    }
+    /// The depth buffer, bottom row first. Binds the target.
+    std::vector<float> read_depth() const
+    {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        std::vector<float> d(size_t(w_) * size_t(h_));
+        glReadPixels(0, 0, w_, h_, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
+        return d;
+    }
+
+private:
+    int w_, h_;
+    GLuint fbo_ = 0, color_ = 0, depth_ = 0, depth_copy_ = 0;
+};
 
 /// An octree's geometry words (SvoTree::gpu_words()) where svo_format.glsl reads them, bound while
 /// alive: an SSBO at `binding` (RK_SVO_BUFFER_TEXTURE=0), or an R32UI 2D texture on texture unit

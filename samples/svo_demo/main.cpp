@@ -80,56 +80,7 @@ bool build(const raykit::SvoMeshData& mesh, int depth, raykit::SvoFill fill, con
     return true;
 }
 
-/// Colour + 32-bit float depth target.
-class Target {
-public:
-    Target(int w, int h) : w_(w), h_(h)
-    {
-        glCreateTextures(GL_TEXTURE_2D, 1, &color_);
-        glTextureStorage2D(color_, 1, GL_RGBA8, w, h);
-        glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
-        glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, w, h);
-        glCreateTextures(GL_TEXTURE_2D, 1, &depth_copy_);
-        glTextureStorage2D(depth_copy_, 1, GL_DEPTH_COMPONENT32F, w, h);
-        glTextureParameteri(depth_copy_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(depth_copy_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glCreateFramebuffers(1, &fbo_);
-        glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
-        glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
-    }
-    ~Target()
-    {
-        glDeleteFramebuffers(1, &fbo_);
-        GLuint t[3] = {color_, depth_, depth_copy_};
-        glDeleteTextures(3, t);
-    }
-    void bind() const
-    {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glViewport(0, 0, w_, h_);
-    }
-    GLuint copy_depth() const
-    {
-        glCopyImageSubData(depth_, GL_TEXTURE_2D, 0, 0, 0, 0, depth_copy_, GL_TEXTURE_2D, 0, 0, 0, 0, w_, h_, 1);
-        return depth_copy_;
-    }
-    GLuint fbo() const { return fbo_; }
-    /// Top row first.
-    std::vector<unsigned char> read() const
-    {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        std::vector<unsigned char> px(size_t(w_) * size_t(h_) * 4), out(px.size());
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-        const size_t row = size_t(w_) * 4;
-        for (int y = 0; y < h_; ++y) std::memcpy(&out[size_t(y) * row], &px[size_t(h_ - 1 - y) * row], row);
-        return out;
-    }
-
-private:
-    int w_, h_;
-    GLuint fbo_ = 0, color_ = 0, depth_ = 0, depth_copy_ = 0;
-};
+using Target = rkgl::DepthTarget;
 
 struct Scene {
     std::vector<VoxelObject> voxels;
@@ -304,7 +255,7 @@ void label(std::vector<unsigned char>& img, int w, int h, const std::vector<std:
         o.text(p.x, p.y, s, scale, rkgl::rgba(1.0f, 1.0f, 1.0f));
     }
     o.draw(w, h);
-    img = t.read();
+    img = t.read_rgba8(true);
 }
 
 /// Fraction of pixels of `img` that are not the sky colour, and its mean iteration grey level.
@@ -339,7 +290,7 @@ int run_headless(const std::string& out_dir, bool quick)
     for (int k = 0; k < 2; ++k) {
         const auto t0 = std::chrono::steady_clock::now();
         draw_scene(scene, target, w, h, cam, 1.3f + 1.7f * float(k), rkgl::SvoDrawParams{});
-        const std::vector<unsigned char> img = target.read();
+        const std::vector<unsigned char> img = target.read_rgba8(true);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         std::printf("svo_demo: hybrid frame %d, %dx%d: %.1f ms (%s)\n", k, w, h, ms, ctx.renderer().c_str());
         paste(hybrid, 2 * w, img, w, h, k * w, 0);
@@ -362,10 +313,10 @@ int run_headless(const std::string& out_dir, bool quick)
         rkgl::SvoDrawParams p;
         p.lod_pixels = pixels[k];
         draw_scene(scene, target, w, h, far_cam, 1.3f, p);
-        paste(lod, 3 * w, target.read(), w, h, k * w, 0);
+        paste(lod, 3 * w, target.read_rgba8(true), w, h, k * w, 0);
         p.show_iterations = true;
         draw_scene(scene, target, w, h, far_cam, 1.3f, p);
-        const std::vector<unsigned char> heat = target.read();
+        const std::vector<unsigned char> heat = target.read_rgba8(true);
         grey[k] = mean_grey(heat);
         paste(lod, 3 * w, heat, w, h, k * w, h);
         char b[128];
@@ -400,7 +351,7 @@ int run_headless(const std::string& out_dir, bool quick)
         p.light_dir_world = glm::normalize(glm::vec3(-0.45f, 0.8f, 0.35f));
         const auto t0 = std::chrono::steady_clock::now();
         glass[0].gl->draw(glass[0].model, view, proj, SvoDepthConvention::gl_minus_one_to_one, p);
-        const std::vector<unsigned char> img = target.read();
+        const std::vector<unsigned char> img = target.read_rgba8(true);
         if (k == 1) glass_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         paste(glass_img, 2 * w, img, w, h, k * w, 0);
     }

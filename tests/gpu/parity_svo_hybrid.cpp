@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <vector>
 
@@ -27,52 +28,22 @@ namespace {
 
 constexpr int W = 160, H = 120;
 
-/// A colour + 32F depth framebuffer with a second depth texture for copies.
-struct HybridTarget {
-    GLuint fbo = 0, color = 0, depth = 0, depth_copy = 0;
-    HybridTarget()
-    {
-        glCreateTextures(GL_TEXTURE_2D, 1, &color);
-        glTextureStorage2D(color, 1, GL_RGBA8, W, H);
-        glCreateTextures(GL_TEXTURE_2D, 1, &depth);
-        glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, W, H);
-        glCreateTextures(GL_TEXTURE_2D, 1, &depth_copy);
-        glTextureStorage2D(depth_copy, 1, GL_DEPTH_COMPONENT32F, W, H);
-        glTextureParameteri(depth_copy, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(depth_copy, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glCreateFramebuffers(1, &fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        glViewport(0, 0, W, H);
-    }
-    ~HybridTarget()
-    {
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glDeleteFramebuffers(1, &fbo);
-        GLuint t[3] = {color, depth, depth_copy};
-        glDeleteTextures(3, t);
-    }
-    void clear(bool reversed) const
-    {
-        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-        glClearDepth(reversed ? 0.0 : 1.0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    }
-    std::vector<float> read_depth() const
-    {
-        std::vector<float> d(size_t(W) * H);
-        glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
-        return d;
-    }
-    std::vector<uint32_t> read_color() const
-    {
-        std::vector<uint32_t> c(size_t(W) * H);
-        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, c.data());
-        return c;
-    }
-    void copy_depth() const { glCopyImageSubData(depth, GL_TEXTURE_2D, 0, 0, 0, 0, depth_copy, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1); }
-};
+/// Clears colour to transparent black and depth to the far value of the convention.
+void clear_target(bool reversed)
+{
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClearDepth(reversed ? 0.0 : 1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+/// The colour pixels as RGBA8 words, bottom row first.
+std::vector<uint32_t> read_color(const rkgl::DepthTarget& t)
+{
+    const std::vector<unsigned char> px = t.read_rgba8(false);
+    std::vector<uint32_t> c(px.size() / 4);
+    std::memcpy(c.data(), px.data(), px.size());
+    return c;
+}
 
 struct Convention {
     SvoDepthConvention conv;
@@ -130,15 +101,15 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
     for (const Convention& s : conventions) {
         const bool rev = s.conv == SvoDepthConvention::reversed_zero_to_one;
         const glm::mat4 proj = svo_perspective(0.9f, float(W) / float(H), 0.5f, rev ? INFINITY : 30.0f, s.conv);
-        HybridTarget target;
+        rkgl::DepthTarget target(W, H);
         set_convention(s.conv);
         rkgl::SvoDrawParams params;
 
         // 1. Same depth for the voxel face and the coplanar quad.
-        target.clear(rev);
+        clear_target(rev);
         obj.draw(model, view, proj, s.conv, params);
         const std::vector<float> dv = target.read_depth();
-        target.clear(rev);
+        clear_target(rev);
         face_mesh.draw(model, view, proj, glm::vec3(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
         const std::vector<float> dr = target.read_depth();
         const float cleared = rev ? 0.0f : 1.0f;
@@ -165,7 +136,7 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
         const glm::dmat4 M = glm::dmat4(proj) * glm::dmat4(view) * glm::dmat4(model);
         std::vector<uint32_t> images[3];
         for (int order = 0; order < 3; ++order) {
-            target.clear(rev);
+            clear_target(rev);
             const glm::vec3 red(1.0f, 0.0f, 0.0f);
             if (order == 0) {
                 slice_mesh.draw(model, view, proj, red, pn);
@@ -176,12 +147,11 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
             } else {
                 // Raster first, then voxels stopping at the copied depth (early termination).
                 slice_mesh.draw(model, view, proj, red, pn);
-                target.copy_depth();
                 rkgl::SvoDrawParams early = params;
-                early.depth_texture = target.depth_copy;
+                early.depth_texture = target.copy_depth();
                 obj.draw(model, view, proj, s.conv, early);
             }
-            images[order] = target.read_color();
+            images[order] = read_color(target);
         }
         long checked = 0, wrong = 0, differ_order = 0, differ_early = 0, plane_wins = 0, voxels_win = 0;
         for (int y = 0; y < H; ++y)
