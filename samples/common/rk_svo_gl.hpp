@@ -73,12 +73,18 @@ layout(location = 0) out vec4 frag;
 
 // Local shading of a hit: stored colour and normal, one directional light (shadowed by the octree
 // itself with secondary rays on).
-vec3 rk_pass_local(rk_svo_tree tree, vec3 p, vec3 d, rk_svo_trace_hit h, bool shadows)
+// The stored smooth normal of attribute `a` (the face where none is stored), facing the ray.
+vec3 rk_pass_normal(uint a, rk_svo_trace_hit h, vec3 d)
 {
-    uint a = rk_svo_trace_attr(0u, tree, h);
-    vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
     vec3 n = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[a]) : h.normal;
-    if (dot(n, d) > 0.0) n = -n;
+    return dot(n, d) > 0.0 ? -n : n;
+}
+
+// `a` is the hit's attribute index (rk_svo_trace_attr), fetched once by the caller.
+vec3 rk_pass_local(rk_svo_tree tree, vec3 p, vec3 d, rk_svo_trace_hit h, uint a, bool shadows)
+{
+    vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
+    vec3 n = rk_pass_normal(a, h, d);
     float diff = max(dot(n, u_light_obj), 0.0);
 #if RK_SVO_PASS_SECONDARY
     // Shadow ray from one voxel along the smooth normal: on a curved voxel surface the cube faces
@@ -106,15 +112,16 @@ vec3 rk_pass_radiance(rk_svo_tree tree, vec3 o, vec3 d)
 {
     rk_svo_trace_hit h = rk_svo_trace(0u, tree, o, d, 3.0e38, vec2(0.0));
     if (!h.hit) return rk_pass_sky(d);
-    return rk_pass_local(tree, o + d * h.t, d, h, true);
+    return rk_pass_local(tree, o + d * h.t, d, h, rk_svo_trace_attr(0u, tree, h), true);
 }
 
 vec3 rk_pass_secondary(rk_svo_tree tree, vec3 o, vec3 dir, rk_svo_trace_hit h)
 {
     vec3 p = rk_svo_hit_point(tree, o, dir, h);  // on the entered face exactly
     vec3 d = normalize(dir);
-    vec3 local = rk_pass_local(tree, p, d, h, true);
-    uint mat = rk_svo_material_ids[rk_svo_trace_attr(0u, tree, h)];
+    uint a = rk_svo_trace_attr(0u, tree, h);
+    vec3 local = rk_pass_local(tree, p, d, h, a, true);
+    uint mat = rk_svo_material_ids[a];
     vec4 surf = rk_surface[mat];
     vec3 col = local;
     if (surf.y < 1.0) {
@@ -126,9 +133,7 @@ vec3 rk_pass_secondary(rk_svo_tree tree, vec3 o, vec3 dir, rk_svo_trace_hit h)
     } else if (surf.x > 0.0) {
         // Mirror about the stored smooth normal (the cube faces of a tilted voxel plane would
         // reflect in stripes).
-        vec3 ns = u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[rk_svo_trace_attr(0u, tree, h)]) : h.normal;
-        if (dot(ns, d) > 0.0) ns = -ns;
-        vec3 rd = reflect(d, ns);
+        vec3 rd = reflect(d, rk_pass_normal(a, h, d));
         vec3 refl = rk_pass_radiance(tree, rk_svo_secondary_origin(p, h.normal, rd, tree, h.level), rd);
         col = mix(local, refl, surf.x);
     }
@@ -159,7 +164,7 @@ void main()
 #if RK_SVO_PASS_SECONDARY
     frag = vec4(rk_pass_secondary(tree, o, d, h), 1.0);
 #else
-    frag = vec4(rk_pass_local(tree, o + d * h.t, d, h, false), 1.0);
+    frag = vec4(rk_pass_local(tree, o + d * h.t, d, h, rk_svo_trace_attr(0u, tree, h), false), 1.0);
 #endif
 }
 )";
