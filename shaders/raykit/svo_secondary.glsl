@@ -84,8 +84,10 @@ layout(std430, binding = RK_SVO_MEDIA_BINDING) readonly buffer RkSvoMedia { vec4
 // unit).
 #if defined(__cplusplus) || !defined(RK_SVO_INTERFACE_NORMAL)
 #define RK_SVO_INTERFACE_NORMAL_(media, attr, face_n) (face_n)
+#define RK_SVO_SECONDARY_HOOKED_NORMAL_ 0
 #else
 #define RK_SVO_INTERFACE_NORMAL_(media, attr, face_n) RK_SVO_INTERFACE_NORMAL(media, attr, face_n)
+#define RK_SVO_SECONDARY_HOOKED_NORMAL_ 1
 #endif
 
 /// rk_svo_safe_normalize: v / |v| without overflow or underflow (scaled by its largest component
@@ -228,7 +230,10 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
     float n_cur = n_in;
     vec3 absorb = absorb_in;
     vec3 dir = d;
-    uint cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
+    uint cur_attr = 0u;  // the current voxel's attributes: only a substituted normal needs them
+#if RK_SVO_SECONDARY_HOOKED_NORMAL_
+    cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
+#endif
     for (uint it = 0u; it < RK_SVO_SECONDARY_MAX_STEPS; ++it) {
         // Distance (voxel units) to the cell's exit plane on each axis.
         vec3 lo = vec3(c);
