@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every build, test, sample and benchmark dependency of raykit from Debian packages.
 # Idempotent: packages already present are skipped, so running it twice costs one dpkg query.
-# Usage: bash scripts/setup.sh        (uses sudo when not root)
+# Usage: bash scripts/setup.sh [extra-package ...]   (uses sudo when not root; scripts that need
+#        bench-only packages, e.g. scripts/bench_trace.sh, pass them as arguments)
 set -euo pipefail
 
 PKGS=(
@@ -15,6 +16,7 @@ PKGS=(
   libgtest-dev libbenchmark-dev               # tests, bench
   gnuplot-nox python3                         # docs/benchmarks.md table + speed-vs-error plot
 )
+PKGS+=("$@")
 
 missing=()
 for p in "${PKGS[@]}"; do
