@@ -12,24 +12,6 @@
 
 using namespace raykit;
 
-namespace {
-
-std::vector<svotrace_gpu::Out> cpu_trace(const SvoTree& t, const rk_svo_tree& tree, const std::vector<svotrace::Ray>& rays)
-{
-    const std::vector<uint32_t> words = t.gpu_words();
-    std::vector<svotrace_gpu::Out> out(rays.size());
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
-        uint32_t tb;
-        std::memcpy(&tb, &h.t, 4);
-        out[i] = {h.hit ? 1u : 0u, tb, h.level, h.cell.x, h.cell.y, h.cell.z, svotrace_gpu::face_code(h.normal),
-                  h.hit ? rk_svo_trace_attr(words.data(), tree, h) : 0u, h.iterations};
-    }
-    return out;
-}
-
-}  // namespace
-
 TEST(GpuParity, SvoTraceRandomTrees)
 {
     struct Spec { uint32_t depth; size_t cells; uint32_t pointer_bits; uint32_t max_level; };
@@ -43,7 +25,7 @@ TEST(GpuParity, SvoTraceRandomTrees)
         t.root_size = 4.0f;
         const rk_svo_tree tree = svo_trace_tree(t, s.max_level);
         const std::vector<svotrace::Ray> rays = svotrace::make_rays(20000, t.root_min, t.root_size, s.depth, 7 + s.depth);
-        const auto cpu = cpu_trace(t, tree, rays);
+        const auto cpu = svotrace_gpu::cpu_trace(t.gpu_words(), tree, rays, glm::vec2(0.0f));
         for (bool texture : {false, true}) {
             const auto gpu = svotrace_gpu::gpu_trace(t, tree, rays, false, glm::vec2(0.0f), texture);
             char what[96];
@@ -71,7 +53,7 @@ TEST(GpuParity, SvoTraceVoxelisedMeshes)
         ASSERT_TRUE(build_svo(b.mesh.view(), opt, t, st)) << b.name << ": " << st.message;
         const rk_svo_tree tree = svo_trace_tree(t);
         const std::vector<svotrace::Ray> rays = svotrace::make_rays(30000, t.root_min, t.root_size, t.depth, 99);
-        const auto cpu = cpu_trace(t, tree, rays);
+        const auto cpu = svotrace_gpu::cpu_trace(t.gpu_words(), tree, rays, glm::vec2(0.0f));
         const auto gpu = svotrace_gpu::gpu_trace(t, tree, rays, false, glm::vec2(0.0f), false);
         svotrace_gpu::compare(b.name, rays, gpu, cpu, t.root_min, t.root_size, 2e-6);
     }

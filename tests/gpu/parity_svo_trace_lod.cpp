@@ -27,16 +27,9 @@ TEST(GpuParity, SvoTraceLevelOfDetail)
     for (float px : {1.0f, 8.0f, 64.0f}) {
         // A pixel cone of a 60 degree camera, `px` pixels wide, on a 512-pixel image.
         const glm::vec2 cone = rk_svo_pixel_cone(1.0471976f, 512.0f, px);
-        std::vector<svotrace_gpu::Out> cpu(rays.size());
+        const std::vector<svotrace_gpu::Out> cpu = svotrace_gpu::cpu_trace(words, tree, rays, cone);
         long coarse = 0;
-        for (size_t i = 0; i < rays.size(); ++i) {
-            const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
-            uint32_t tb;
-            std::memcpy(&tb, &h.t, 4);
-            cpu[i] = {h.hit ? 1u : 0u, tb, h.level, h.cell.x, h.cell.y, h.cell.z, svotrace_gpu::face_code(h.normal),
-                      h.hit ? rk_svo_trace_attr(words.data(), tree, h) : 0u, h.iterations};
-            coarse += h.hit && h.level < t.depth;
-        }
+        for (const svotrace_gpu::Out& o : cpu) coarse += o.hit != 0u && o.level < t.depth;
         // The LOD build really stops early (the LOD-off build in the other translation unit never does).
         EXPECT_GT(coarse, 100) << "cone " << px << " px";
         const auto gpu = svotrace_gpu::gpu_trace(t, tree, rays, true, cone, false);

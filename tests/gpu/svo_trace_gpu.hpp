@@ -31,6 +31,22 @@ inline uint32_t face_code(glm::vec3 n)
     return 7u;
 }
 
+/// rk_svo_trace of every ray with this translation unit's C++ build (its RK_SVO_TRAVERSE_* macros;
+/// the rk_svo_tree parameter's type carries them, so each build gets its own function).
+inline std::vector<Out> cpu_trace(const std::vector<uint32_t>& words, const raykit::rk_svo_tree& tree,
+                                  const std::vector<svotrace::Ray>& rays, glm::vec2 cone)
+{
+    std::vector<Out> out(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const raykit::rk_svo_trace_hit h = raykit::rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
+        uint32_t tb;
+        std::memcpy(&tb, &h.t, 4);
+        out[i] = {h.hit ? 1u : 0u, tb, h.level, h.cell.x, h.cell.y, h.cell.z, face_code(h.normal),
+                  h.hit ? raykit::rk_svo_trace_attr(words.data(), tree, h) : 0u, h.iterations};
+    }
+    return out;
+}
+
 /// rk_svo_trace of every ray on the driver, words from an SSBO or the R32UI texture layout.
 inline std::vector<Out> gpu_trace(const raykit::SvoTree& t, const raykit::rk_svo_tree& tree,
                                   const std::vector<svotrace::Ray>& rays, bool lod, glm::vec2 cone, bool texture)
