@@ -14,6 +14,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -296,4 +299,20 @@ TEST(SvoSecondary, OffsetsHoldAtDepth18AndFromFarCameras)
     EXPECT_EQ(self, 0);
     EXPECT_GT(far_hits, n / 2);
     EXPECT_EQ(self_far, 0);
+}
+
+TEST(SvoSecondary, ShaderDefaultsMatchTheHeader)
+{
+    // svo_secondary.hpp names its namespace from the macro defaults before including the .glsl;
+    // the shader's own defaults must be the same values.
+    std::ifstream f(std::string(RAYKIT_SHADER_DIR) + "/raykit/svo_secondary.glsl");
+    ASSERT_TRUE(f.good());
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const std::string src = ss.str();
+    EXPECT_NE(src.find("#define RK_SVO_SECONDARY_FRESNEL_FAST 0\n"), std::string::npos);
+    EXPECT_NE(src.find("#define RK_SVO_SECONDARY_ABSORPTION 1\n"), std::string::npos);
+    EXPECT_NE(src.find("#define RK_SVO_SECONDARY_MAX_STEPS 4096u\n"), std::string::npos);
+    static_assert(RK_SVO_SECONDARY_FRESNEL_FAST == 0 && RK_SVO_SECONDARY_ABSORPTION == 1 && RK_SVO_SECONDARY_MAX_STEPS == 4096u,
+                  "this translation unit uses the defaults");
 }
