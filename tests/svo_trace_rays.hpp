@@ -36,6 +36,21 @@ inline const char* const family_names[] = {
 };
 constexpr int family_count = 10;
 
+/// Distance (world units) of p from the surface of the box [lo, lo + cs]^3: how far outside it is,
+/// or, inside, how far from the nearest face (0 when `inside_ok`: an origin inside a node). How the
+/// traversal tests check that a hit point lies on its node's surface.
+inline double surface_distance(glm::dvec3 p, glm::dvec3 lo, double cs, bool inside_ok)
+{
+    double outside = 0.0, inside = 1e300;
+    for (int a = 0; a < 3; ++a) {
+        const double below = lo[a] - p[a], above = p[a] - (lo[a] + cs);
+        outside = std::fmax(outside, std::fmax(below, above));
+        inside = std::fmin(inside, std::fmin(-below, -above));
+    }
+    if (outside > 0.0) return outside;
+    return inside_ok ? 0.0 : inside;
+}
+
 /// `n` rays cycling through every family, deterministic in `seed`.
 inline std::vector<Ray> make_rays(size_t n, glm::vec3 root_min, float root_size, uint32_t depth, uint64_t seed)
 {

@@ -52,20 +52,6 @@ rkref::DdaRay to_ref(const svotrace::Ray& r)
     return rkref::DdaRay{glm::dvec3(r.origin), glm::dvec3(r.dir), double(r.t_max)};
 }
 
-/// Distance (root sizes) of p from the surface of the box [lo, lo + cs]^3; 0 for a point inside
-/// when `inside_ok` (the origin inside a node).
-double surface_distance(glm::dvec3 p, glm::dvec3 lo, double cs, bool inside_ok, double root_size)
-{
-    double outside = 0.0, inside = 1e300;
-    for (int a = 0; a < 3; ++a) {
-        const double below = lo[a] - p[a], above = p[a] - (lo[a] + cs);
-        outside = std::max(outside, std::max(below, above));
-        inside = std::min(inside, std::min(-below, -above));
-    }
-    if (outside > 0.0) return outside / root_size;
-    return inside_ok ? 0.0 : inside / root_size;
-}
-
 /// The axis through whose face the exact ray enters `cell` (at `level`): the largest slab entry t.
 int entry_axis(glm::ivec3 cell, uint32_t level, const SvoTree& t, const svotrace::Ray& r)
 {
@@ -130,7 +116,7 @@ void check_ray(const char* what, const svotrace::Ray& ray, const rk_svo_trace_hi
         const double cs = rs / double(1u << h.level);
         const glm::dvec3 lo = rmin + cs * glm::dvec3(h.cell);
         const glm::dvec3 p = o + double(h.t) * d;
-        const double sd = surface_distance(p, lo, cs, h.t == 0.0f, rs);
+        const double sd = svotrace::surface_distance(p, lo, cs, h.t == 0.0f) / rs;
         if (dist < 10.0) st.worst_pos = std::max(st.worst_pos, sd);
         const double n_dot_d = glm::dot(glm::dvec3(h.normal), d);
         const int ax = h.normal.x != 0.0f ? 0 : (h.normal.y != 0.0f ? 1 : 2);

@@ -144,15 +144,7 @@ inline bool on_node(const svotrace::Ray& r, double t, const Out& o, glm::vec3 ro
     const double cs = double(root_size) / double(1u << o.level);
     const glm::dvec3 lo = glm::dvec3(root_min) + cs * glm::dvec3(o.cx, o.cy, o.cz);
     const glm::dvec3 p = glm::dvec3(r.origin) + t * glm::dvec3(r.dir);
-    double outside = 0.0, inside = 1e300;
-    for (int a = 0; a < 3; ++a) {
-        const double below = lo[a] - p[a], above = p[a] - (lo[a] + cs);
-        outside = std::fmax(outside, std::fmax(below, above));
-        inside = std::fmin(inside, std::fmin(-below, -above));
-    }
-    const double lim = tol * double(root_size);
-    if (outside > lim) return false;
-    return t == 0.0 || outside > 0.0 || inside <= lim;
+    return svotrace::surface_distance(p, lo, cs, t == 0.0) <= tol * double(root_size);
 }
 
 /// Compares driver and C++ results ray by ray: the same node (level and cell), attribute and entry
