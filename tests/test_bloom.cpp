@@ -97,10 +97,18 @@ TEST(BloomWeights, SumToOneAndSymmetricForManySigmas)
             for (float x : w) EXPECT_TRUE(std::isfinite(x) && x >= 0.0f);
         }
     }
-    EXPECT_THROW(gaussian_weights(0.0f, 9), std::invalid_argument);
-    EXPECT_THROW(gaussian_weights(kNaN, 9), std::invalid_argument);
-    EXPECT_THROW(gaussian_weights(kInf, 9), std::invalid_argument);
-    EXPECT_THROW(gaussian_weights(3.0f, -1), std::invalid_argument);
+    // Broken preconditions: an empty result and an invalid_argument status naming the function.
+    for (const auto& bad : {std::pair<float, int>{0.0f, 9}, {kNaN, 9}, {kInf, 9}, {3.0f, -1}, {3.0f, 4097}}) {
+        Status st;
+        EXPECT_TRUE(gaussian_weights(bad.first, bad.second, &st).empty());
+        EXPECT_EQ(st.code, Error::invalid_argument);
+        EXPECT_NE(st.message.find("gaussian_weights"), std::string::npos) << st.message;
+        EXPECT_TRUE(gaussian_weights(bad.first, bad.second).empty());  // no status: still empty, no crash
+    }
+    Status ok_st;
+    ok_st.code = Error::io;  // a stale status is cleared by a successful call
+    EXPECT_EQ(gaussian_weights(3.0f, 9, &ok_st).size(), 10u);
+    EXPECT_TRUE(ok_st.ok());
 }
 
 TEST(BloomWeights, PublishedLinearTaps)
@@ -226,10 +234,15 @@ TEST(BloomChain, OddAndTinySizes)
     const BloomChain f16 = bloom_chain(1024, 768, 16, 1);
     ASSERT_EQ(f16.downsamples.size(), 4u);
     EXPECT_EQ(f16.levels[0], ivec2(64, 48));
-    EXPECT_THROW(bloom_chain(0, 10), std::invalid_argument);
-    EXPECT_THROW(bloom_chain(10, 10, 3), std::invalid_argument);
-    EXPECT_THROW(bloom_chain(10, 10, 0), std::invalid_argument);
-    EXPECT_THROW(bloom_chain(10, 10, 8, 0), std::invalid_argument);
+    struct Bad { int w, h, div, levels; const char* what; };
+    for (const Bad& b : {Bad{0, 10, 8, 4, "width"}, Bad{10, 65537, 8, 4, "width"}, Bad{10, 10, 3, 4, "first_div"},
+                         Bad{10, 10, 0, 4, "first_div"}, Bad{10, 10, 8, 0, "levels"}, Bad{10, 10, 8, 17, "levels"}}) {
+        Status st;
+        const BloomChain bad = bloom_chain(b.w, b.h, b.div, b.levels, &st);
+        EXPECT_TRUE(bad.downsamples.empty() && bad.levels.empty());
+        EXPECT_EQ(st.code, Error::invalid_argument);
+        EXPECT_NE(st.message.find(b.what), std::string::npos) << st.message;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -550,11 +563,22 @@ TEST(BloomComposite, ModesAndLevelWeights)
     EXPECT_EQ(bloom_level_weights(p), vec4(0.0f));
     BloomParams bad;
     bad.radius = 31;
-    EXPECT_THROW(validate_bloom_params(bad), std::invalid_argument);
+    Status st;
+    EXPECT_FALSE(validate_bloom_params(bad, &st));
+    EXPECT_NE(st.message.find("radius"), std::string::npos) << st.message;
     bad = BloomParams{};
     bad.levels = 5;
-    EXPECT_THROW(validate_bloom_params(bad), std::invalid_argument);
-    EXPECT_NO_THROW(validate_bloom_params(BloomParams::recommended()));
+    EXPECT_FALSE(validate_bloom_params(bad, &st));
+    EXPECT_NE(st.message.find("levels"), std::string::npos) << st.message;
+    bad = BloomParams{};
+    bad.composite = 7;
+    EXPECT_FALSE(validate_bloom_params(bad));
+    EXPECT_TRUE(bloom_reference(BloomImage(4, 4), bad, &st).output.pixels.empty());
+    EXPECT_EQ(st.code, Error::invalid_argument);
+    EXPECT_TRUE(bloom_reference(BloomImage{}, BloomParams{}, &st).output.pixels.empty());
+    EXPECT_NE(st.message.find("empty image"), std::string::npos) << st.message;
+    EXPECT_TRUE(validate_bloom_params(BloomParams::recommended(), &st));
+    EXPECT_TRUE(st.ok());
 }
 
 // ---------------------------------------------------------------------------------------------

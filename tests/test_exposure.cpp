@@ -385,8 +385,24 @@ TEST(Exposure, LogAverageEdgeCases)
     // 1x1, empty, bad arguments.
     EXPECT_NEAR(log_average_luminance(std::vector<float>{2.0f}, 1, 1, 1).log_average, 2.0001, 1e-6);
     EXPECT_EQ(log_average_luminance(std::vector<float>{}, 0, 0, 1).log_average, 1.0f);
-    EXPECT_THROW(log_average_luminance(std::vector<float>(4, 1.0f), 2, 1, 2), std::invalid_argument);
-    EXPECT_THROW(log_average_luminance(std::vector<float>(5, 1.0f), 2, 1, 3), std::invalid_argument);
+    {
+        Status st;
+        const LuminanceStats bad_channels = log_average_luminance(std::vector<float>(4, 1.0f), 2, 1, 2, {}, &st);
+        EXPECT_EQ(st.code, Error::invalid_argument);
+        EXPECT_NE(st.message.find("channels"), std::string::npos) << st.message;
+        EXPECT_EQ(bad_channels.count, 0u);
+        EXPECT_EQ(bad_channels.log_average, 1.0f);
+        EXPECT_EQ(log_average_luminance(std::vector<float>(5, 1.0f), 2, 1, 3, {}, &st).count, 0u);
+        EXPECT_NE(st.message.find("pixels.size()"), std::string::npos) << st.message;
+        EXPECT_EQ(log_average_luminance(nullptr, 2, 2, 1, {}, &st).count, 0u);
+        EXPECT_NE(st.message.find("null pixels"), std::string::npos) << st.message;
+        const std::vector<float> px(16, 1.0f);
+        EXPECT_TRUE(luminance_histogram(px.data(), 2, 1, 1, 0u, -4.0f, 4.0f, RK_LOG_LUM_DELTA, &st).empty());
+        EXPECT_NE(st.message.find("bins"), std::string::npos) << st.message;
+        EXPECT_TRUE(luminance_histogram(px.data(), 2, 1, 5, 8u, -4.0f, 4.0f, RK_LOG_LUM_DELTA, &st).empty());
+        EXPECT_EQ(log_average_luminance(px.data(), 2, 1, 1, {}, &st).count, 2u);
+        EXPECT_TRUE(st.ok());
+    }
     // The CPU-only parameter estimate uses the robust extremes.
     std::vector<float> ramp;
     for (int i = 0; i < 1000; ++i) ramp.push_back(static_cast<float>(std::pow(10.0, -2.0 + 4.0 * i / 999.0)));
@@ -479,8 +495,15 @@ TEST(Exposure, ReductionChainSizesAndWeights)
     EXPECT_EQ(reduction_chain(3840, 2160, 64).size(), 2u);  // 60x34, then 1x1
     EXPECT_EQ(reduction_chain(3840, 2160, 64)[0].out_height, 34);
     EXPECT_EQ(reduction_chain(3840, 2160, 64)[0].last_cover_y, 2160 - 33 * 64);
-    EXPECT_THROW(reduction_chain(0, 5, 4), std::invalid_argument);
-    EXPECT_THROW(reduction_chain(5, 5, 1), std::invalid_argument);
+    Status st;
+    EXPECT_TRUE(reduction_chain(0, 5, 4, &st).empty());
+    EXPECT_NE(st.message.find("width and height"), std::string::npos) << st.message;
+    EXPECT_TRUE(reduction_chain(5, 5, 1, &st).empty());
+    EXPECT_NE(st.message.find("block"), std::string::npos) << st.message;
+    EXPECT_EQ(reduce_chain_mean(std::vector<float>(6, 1.0f), 5, 1, 4, true, &st), 0.0f);
+    EXPECT_NE(st.message.find("values.size()"), std::string::npos) << st.message;
+    EXPECT_EQ(reduce_chain_mean(std::vector<float>(5, 1.0f), 5, 1, 4, true, &st), 1.0f);
+    EXPECT_TRUE(st.ok());
 
     EXPECT_EQ(rk_reduce_cover(0u, 4u, 10u), 4u);
     EXPECT_EQ(rk_reduce_cover(2u, 4u, 10u), 2u);

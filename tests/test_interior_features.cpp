@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "raykit/interior_features.hpp"
+#include "raykit/shader_source.hpp"
 
 using namespace raykit;
 
@@ -80,20 +81,31 @@ TEST(InteriorFeatures, EachFeatureMapsToItsMacro)
     EXPECT_LT(src.find("#version"), src.find("#define RK_IM_SHADING 1"));
 }
 
-TEST(InteriorFeatures, InvalidDescriptionsThrow)
+TEST(InteriorFeatures, InvalidDescriptionsAreReported)
 {
+    auto expect_bad = [](const InteriorSceneDesc& d, const char* field) {
+        Status st;
+        EXPECT_TRUE(interior_defines(d, &st).empty());
+        EXPECT_EQ(st.code, Error::invalid_argument);
+        EXPECT_NE(st.message.find(field), std::string::npos) << st.message;
+        EXPECT_TRUE(interior_defines(d).empty());
+    };
     InteriorSceneDesc d;
     d.furniture_layers = 5;
-    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    expect_bad(d, "furniture_layers");
     d.furniture_layers = -1;
-    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    expect_bad(d, "furniture_layers");
     d.furniture_layers = 0;
     d.fade_distance = -1.0f;
-    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    expect_bad(d, "fade_distance");
     d.fade_distance = std::numeric_limits<float>::infinity();
-    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    expect_bad(d, "fade_distance");
     d.fade_distance = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_THROW(interior_defines(d), std::invalid_argument);
+    expect_bad(d, "fade_distance");
+    d.fade_distance = 10.0f;
+    Status st;
+    EXPECT_EQ(interior_defines(d, &st).size(), 10u);
+    EXPECT_TRUE(st.ok());
 }
 
 TEST(InteriorFeatures, AtlasPaddingRuleVsBruteForce)
@@ -143,8 +155,17 @@ TEST(InteriorFeatures, AtlasPaddingRuleVsBruteForce)
         }
         EXPECT_EQ(l.size(), 4 * (64 + 2 * l.pad));
     }
-    EXPECT_THROW(interior_atlas_layout(60, 4, 3), std::invalid_argument);  // 60 not a multiple of 8
-    EXPECT_THROW(interior_atlas_layout(64, 0, 2), std::invalid_argument);
+    Status st;
+    EXPECT_EQ(interior_atlas_layout(60, 4, 3, &st).size(), 0);  // 60 not a multiple of 8
+    EXPECT_EQ(st.code, Error::invalid_argument);
+    EXPECT_EQ(interior_atlas_layout(64, 0, 2, &st).size(), 0);
+    EXPECT_EQ(interior_atlas_layout(64, 1, 13, &st).size(), 0);
+    // Too large, including sizes whose int product would overflow.
+    EXPECT_EQ(interior_atlas_layout(4096, 17, 0, &st).size(), 0);
+    EXPECT_NE(st.message.find("too large"), std::string::npos) << st.message;
+    EXPECT_EQ(interior_atlas_layout(1 << 30, 1 << 20, 0, &st).size(), 0);
+    EXPECT_EQ(interior_atlas_layout(4094, 16, 0, &st).size(), 65536);  // (4094 + 2) * 16: the limit itself
+    EXPECT_TRUE(st.ok());
 }
 
 TEST(InteriorFeatures, AtlasPaddingRuleVsEmulatedMipFiltering)

@@ -659,11 +659,38 @@ TEST(Bake, MipsAreBoxFiltersAndNeverMixHalves)
             for (int i = 0; i < 2 * h; ++i) ASSERT_EQ(mips[l].texel(i, j).x, i < h ? 1.0f : -1.0f);
         }
     }
-    EXPECT_THROW(downsample_box(EnvImage(3, 2)), std::invalid_argument);
+    // Broken preconditions: an empty result and a Status naming the function, never a crash.
+    Status st;
+    EXPECT_EQ(downsample_box(EnvImage(3, 2), &st).width, 0);
+    EXPECT_NE(st.message.find("downsample_box"), std::string::npos) << st.message;
+    EXPECT_TRUE(generate_env_mips(EnvImage(12, 6), 3, &st).empty());  // 6x3 is odd
+    EXPECT_NE(st.message.find("level 2"), std::string::npos) << st.message;
+    EXPECT_TRUE(generate_env_mips(base, 0, &st).empty());
+    EXPECT_EQ(generate_env_mips(base, 4, &st).size(), 4u);
+    EXPECT_TRUE(st.ok());
     o.half_size = 36;  // not a multiple of 2^3
-    EXPECT_THROW(bake_dual_paraboloid_fn(identity_env, o), std::invalid_argument);
+    EXPECT_EQ(bake_dual_paraboloid_fn(identity_env, o, &st).half_size, 0);
+    EXPECT_NE(st.message.find("multiple"), std::string::npos) << st.message;
     o.half_size = 8;  // guard would eat the map
-    EXPECT_THROW(bake_dual_paraboloid_fn(identity_env, o), std::invalid_argument);
+    EXPECT_TRUE(bake_dual_paraboloid_fn(identity_env, o, &st).levels.empty());
+    EXPECT_NE(st.message.find("guard"), std::string::npos) << st.message;
+    EXPECT_EQ(EnvImage(-3, 4).rgb.size(), 0u);  // a negative size is an empty image, not a huge allocation
+    EXPECT_EQ(bake_cube_map(0, identity_env, 1, &st).size, 0);
+    EXPECT_EQ(bake_cube_map(4, identity_env, 65, &st).size, 0);
+    EXPECT_EQ(bake_paraboloid_fn(identity_env, 8, mat3(1.0f), 1.0f, 0.0f, 1, &st).width, 0);
+    EXPECT_NE(st.message.find("guard_scale"), std::string::npos) << st.message;
+    EXPECT_EQ(bake_octahedral_fn(1, identity_env, 1, &st).size, 0);
+    // An empty or inconsistent cube is refused by everything that samples it.
+    EnvCubeMap cube;
+    EXPECT_TRUE(bake_dual_paraboloid(cube, DualParaboloidBakeOptions{}, &st).levels.empty());
+    EXPECT_EQ(bake_paraboloid(cube, 8, mat3(1.0f), 1.0f, 1.0f, 0, &st).width, 0);
+    EXPECT_EQ(bake_octahedral(cube, 8, 0, &st).size, 0);
+    cube = bake_cube_map(4, identity_env, 1, &st);
+    EXPECT_TRUE(st.ok());
+    cube.faces[3] = EnvImage(2, 2);
+    EXPECT_EQ(bake_octahedral(cube, 8, 0, &st).size, 0);
+    EXPECT_NE(st.message.find("inconsistent"), std::string::npos) << st.message;
+    EXPECT_EQ(cube_from_dual_paraboloid(DualParaboloidMap{}, 8, 2, &st).size, 0);
 }
 
 TEST(Bake, SeamIsContinuous)

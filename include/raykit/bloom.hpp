@@ -12,12 +12,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "raykit/color.hpp"
 #include "raykit/common.hpp"
+#include "raykit/status.hpp"
 
 namespace raykit {
 #include "raykit/bloom.glsl"
@@ -34,11 +34,14 @@ struct BloomTap {
 /// of 2 radius + 1 taps is symmetric by construction). Computed in float64, rounded once.
 /// sigma = 3, radius = 9 (3 sigma; the thesis's sigma, radius not stated): w0 = 0.13318,
 /// w1 = 0.12598, ..., w9 = 0.00148 (seed002.md §2.7).
-/// Throws std::invalid_argument unless sigma is finite in (0, 1e4] and radius in [0, 4096].
-inline std::vector<float> gaussian_weights(float sigma, int radius)
+/// Requires sigma finite in (0, 1e4] and radius in [0, 4096]; otherwise returns an empty vector and
+/// describes the violation in *st (status.hpp).
+inline std::vector<float> gaussian_weights(float sigma, int radius, Status* st = nullptr)
 {
+    detail::reset(st);
     if (!(sigma > 0.0f) || !(sigma <= 1e4f) || radius < 0 || radius > 4096) {
-        throw std::invalid_argument("raykit::gaussian_weights: sigma must be in (0, 1e4], radius in [0, 4096]");
+        detail::report(st, "raykit::gaussian_weights: sigma must be in (0, 1e4], radius in [0, 4096]");
+        return {};
     }
     const double s = static_cast<double>(sigma);
     std::vector<double> w(static_cast<size_t>(radius) + 1);
@@ -105,18 +108,22 @@ struct BloomChain {
 /// level is 1/first_div of it, with `levels` levels (thesis: 1/8 and 4 levels: 1024x768 gives
 /// 128x96, 64x48, 32x24, 16x12 after the 512x384 and 256x192 passes). Odd sizes round up at each
 /// halving: 1023x767 -> 512x384 -> ... -> 128x96, 64x48, 32x24, 16x12; 5x3 -> 3x2 -> 2x1 -> 1x1...
-/// Throws std::invalid_argument unless width, height are in [1, 65536], first_div is a power of two
-/// in [1, 32768] and levels in [1, 16].
-inline BloomChain bloom_chain(int width, int height, int first_div = 8, int levels = 4)
+/// Requires width, height in [1, 65536], first_div a power of two in [1, 32768] and levels in
+/// [1, 16]; otherwise returns an empty chain and describes the violation in *st (status.hpp).
+inline BloomChain bloom_chain(int width, int height, int first_div = 8, int levels = 4, Status* st = nullptr)
 {
+    detail::reset(st);
     if (width < 1 || height < 1 || width > 65536 || height > 65536) {
-        throw std::invalid_argument("raykit::bloom_chain: width and height must be in [1, 65536]");
+        detail::report(st, "raykit::bloom_chain: width and height must be in [1, 65536]");
+        return {};
     }
     if (first_div < 1 || first_div > 32768 || (first_div & (first_div - 1)) != 0) {
-        throw std::invalid_argument("raykit::bloom_chain: first_div must be a power of two in [1, 32768]");
+        detail::report(st, "raykit::bloom_chain: first_div must be a power of two in [1, 32768]");
+        return {};
     }
     if (levels < 1 || levels > 16) {
-        throw std::invalid_argument("raykit::bloom_chain: levels must be in [1, 16]");
+        detail::report(st, "raykit::bloom_chain: levels must be in [1, 16]");
+        return {};
     }
     int halvings = 0;
     while ((1 << halvings) < first_div) ++halvings;
@@ -161,21 +168,24 @@ struct BloomParams {
     }
 };
 
-/// validate_bloom_params: throws std::invalid_argument naming the first bad field: sigma/radius as
-/// gaussian_weights, radius <= 2 (RK_BLOOM_MAX_TAPS - 1) = 30, first_div as bloom_chain, levels in
-/// [1, 4], mode and composite among the RK_BLOOM_* values. Threshold, knee, strength and weights are
-/// not checked: the shared functions sanitise them (NaN -> 0).
-inline void validate_bloom_params(const BloomParams& p)
+/// validate_bloom_params: true when the parameters are usable; otherwise false, with *st naming the
+/// first bad field: sigma/radius as gaussian_weights, radius <= 2 (RK_BLOOM_MAX_TAPS - 1) = 30,
+/// first_div as bloom_chain, levels in [1, 4], mode and composite among the RK_BLOOM_* values.
+/// Threshold, knee, strength and weights are not checked: the shared functions sanitise them
+/// (NaN -> 0).
+inline bool validate_bloom_params(const BloomParams& p, Status* st = nullptr)
 {
-    auto fail = [](const char* what) { throw std::invalid_argument(std::string("raykit::BloomParams: ") + what); };
-    if (!(p.sigma > 0.0f) || !(p.sigma <= 1e4f)) fail("sigma must be in (0, 1e4]");
-    if (p.radius < 0 || p.radius > 2 * (RK_BLOOM_MAX_TAPS - 1)) fail("radius must be in [0, 30]");
+    detail::reset(st);
+    auto fail = [st](const char* what) { return detail::report(st, std::string("raykit::BloomParams: ") + what); };
+    if (!(p.sigma > 0.0f) || !(p.sigma <= 1e4f)) return fail("sigma must be in (0, 1e4]");
+    if (p.radius < 0 || p.radius > 2 * (RK_BLOOM_MAX_TAPS - 1)) return fail("radius must be in [0, 30]");
     if (p.first_div < 1 || p.first_div > 32768 || (p.first_div & (p.first_div - 1)) != 0) {
-        fail("first_div must be a power of two in [1, 32768]");
+        return fail("first_div must be a power of two in [1, 32768]");
     }
-    if (p.levels < 1 || p.levels > 4) fail("levels must be in [1, 4]");
-    if (p.mode < RK_BLOOM_MODE_HARD || p.mode > RK_BLOOM_MODE_SUBTRACT) fail("unknown mode");
-    if (p.composite < RK_BLOOM_COMPOSITE_ADD || p.composite > RK_BLOOM_COMPOSITE_CONSERVE) fail("unknown composite");
+    if (p.levels < 1 || p.levels > 4) return fail("levels must be in [1, 4]");
+    if (p.mode < RK_BLOOM_MODE_HARD || p.mode > RK_BLOOM_MODE_SUBTRACT) return fail("unknown mode");
+    if (p.composite < RK_BLOOM_COMPOSITE_ADD || p.composite > RK_BLOOM_COMPOSITE_CONSERVE) return fail("unknown composite");
+    return true;
 }
 
 /// bloom_level_weights: the weights rk_bloom_sum_levels gets: level_weights sanitised (NaN,
@@ -199,7 +209,10 @@ struct BloomImage {
     std::vector<vec3> pixels;
 
     BloomImage() = default;
-    BloomImage(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * static_cast<size_t>(h), vec3(0.0f)) {}
+    /// A black w x h image; a negative size gives an empty image (0 x 0).
+    BloomImage(int w, int h)
+        : width(w > 0 && h > 0 ? w : 0), height(w > 0 && h > 0 ? h : 0),
+          pixels(static_cast<size_t>(width) * static_cast<size_t>(height), vec3(0.0f)) {}
     vec3& at(int x, int y) { return pixels[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; }
     const vec3& at(int x, int y) const
     {
@@ -299,13 +312,15 @@ struct BloomResult {
 ///      float64, black border; the GPU uses the merged taps);
 ///   4. per full-size pixel: sample_bilinear (clamp to edge) of every level at the pixel centre,
 ///      rk_bloom_sum_levels with bloom_level_weights, rk_bloom_composite with the pixel's bright pass.
-/// Throws std::invalid_argument for bad params (validate_bloom_params) or an empty / inconsistent image.
-inline BloomResult bloom_reference(const BloomImage& hdr, const BloomParams& p)
+/// Bad params (validate_bloom_params) or an empty / inconsistent image: returns an empty result
+/// (output.width == 0) and describes it in *st (status.hpp).
+inline BloomResult bloom_reference(const BloomImage& hdr, const BloomParams& p, Status* st = nullptr)
 {
-    validate_bloom_params(p);
+    if (!validate_bloom_params(p, st)) return {};
     if (hdr.width < 1 || hdr.height < 1 ||
         hdr.pixels.size() != static_cast<size_t>(hdr.width) * static_cast<size_t>(hdr.height)) {
-        throw std::invalid_argument("raykit::bloom_reference: empty image or pixel count != width * height");
+        detail::report(st, "raykit::bloom_reference: empty image or pixel count != width * height");
+        return {};
     }
     BloomResult res;
     res.reduction = bloom_reduce(hdr, rk_bloom_cutoff(p.threshold, p.knee, p.mode));

@@ -15,11 +15,11 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "raykit/color.hpp"
+#include "raykit/status.hpp"
 
 namespace raykit {
 #include "raykit/exposure.glsl"
@@ -48,12 +48,15 @@ struct LuminanceStats {
 
 namespace detail {
 
-inline void check_image(const float* pixels, std::size_t width, std::size_t height, int channels, const char* who)
+inline bool check_image(const float* pixels, std::size_t width, std::size_t height, int channels, const char* who,
+                        Status* st)
 {
-    if (!pixels && width * height > 0) throw std::invalid_argument(std::string(who) + ": null pixels");
+    reset(st);
+    if (!pixels && width * height > 0) return report(st, std::string(who) + ": null pixels");
     if (channels != 1 && channels != 3 && channels != 4) {
-        throw std::invalid_argument(std::string(who) + ": channels must be 1 (luminance), 3 (RGB) or 4 (RGBA)");
+        return report(st, std::string(who) + ": channels must be 1 (luminance), 3 (RGB) or 4 (RGBA)");
     }
+    return true;
 }
 
 /// The log2(delta + L) term of pixel i, exactly as luminance_reduce.glsl computes it.
@@ -102,13 +105,17 @@ inline float exp2_clamped(double log2_value)
 /// function the GPU runs: channels sanitised, so NaN/negative/-Inf count as 0 and +Inf as
 /// RK_HDR_MAX); the terms are summed in float64 and the percentiles are exact order statistics
 /// (linear interpolation, "type 7"). An empty image gives log_average 1 (mean 0).
-/// Throws std::invalid_argument for other channel counts. Cost: one log2 per pixel plus two
-/// nth_element over a copy of the terms (4 bytes per pixel): ~0.2 s for 3840x2160 on one core.
+/// Other channel counts, or null pixels: the empty image's result (count 0), described in *st
+/// (status.hpp). Cost: one log2 per pixel plus two nth_element over a copy of the terms (4 bytes
+/// per pixel): ~0.2 s for 3840x2160 on one core.
 inline LuminanceStats log_average_luminance(const float* pixels, std::size_t width, std::size_t height, int channels,
-                                            const LogAverageOptions& options = {})
+                                            const LogAverageOptions& options = {}, Status* st = nullptr)
 {
-    detail::check_image(pixels, width, height, channels, "raykit::log_average_luminance");
     LuminanceStats s;
+    if (!detail::check_image(pixels, width, height, channels, "raykit::log_average_luminance", st)) {
+        s.log_average = 1.0f;
+        return s;
+    }
     s.count = width * height;
     if (s.count == 0) {
         s.log_average = 1.0f;
@@ -136,14 +143,17 @@ inline LuminanceStats log_average_luminance(const float* pixels, std::size_t wid
 }
 
 /// log_average_luminance over a std::vector holding width * height * channels floats
-/// (throws std::invalid_argument when the size does not match).
+/// (a size that does not match: the empty image's result, described in *st).
 inline LuminanceStats log_average_luminance(const std::vector<float>& pixels, std::size_t width, std::size_t height,
-                                            int channels, const LogAverageOptions& options = {})
+                                            int channels, const LogAverageOptions& options = {}, Status* st = nullptr)
 {
     if (pixels.size() != width * height * static_cast<std::size_t>(channels > 0 ? channels : 0)) {
-        throw std::invalid_argument("raykit::log_average_luminance: pixels.size() != width * height * channels");
+        detail::report(st, "raykit::log_average_luminance: pixels.size() != width * height * channels");
+        LuminanceStats s;
+        s.log_average = 1.0f;
+        return s;
     }
-    return log_average_luminance(pixels.data(), width, height, channels, options);
+    return log_average_luminance(pixels.data(), width, height, channels, options, st);
 }
 
 /// Reinhard 2002's automatic parameters (thesis Eq. 3.18-3.19).
@@ -174,13 +184,16 @@ inline ReinhardParams reinhard_auto_params(const LuminanceStats& stats)
 
 /// luminance_histogram: counts of the pixels' log2(delta + L) terms in `bins` equal bins over
 /// [min_log2, max_log2] (rk_histogram_bin: out-of-range values land in the end bins). Same pixel
-/// layout as log_average_luminance. Throws std::invalid_argument for bins == 0 or bad channels.
+/// layout as log_average_luminance. bins == 0 or bad channels: an empty vector, described in *st.
 inline std::vector<std::uint32_t> luminance_histogram(const float* pixels, std::size_t width, std::size_t height,
                                                       int channels, std::uint32_t bins, float min_log2, float max_log2,
-                                                      float delta = RK_LOG_LUM_DELTA)
+                                                      float delta = RK_LOG_LUM_DELTA, Status* st = nullptr)
 {
-    detail::check_image(pixels, width, height, channels, "raykit::luminance_histogram");
-    if (bins == 0) throw std::invalid_argument("raykit::luminance_histogram: bins must be >= 1");
+    if (!detail::check_image(pixels, width, height, channels, "raykit::luminance_histogram", st)) return {};
+    if (bins == 0) {
+        detail::report(st, "raykit::luminance_histogram: bins must be >= 1");
+        return {};
+    }
     std::vector<std::uint32_t> counts(bins, 0u);
     const std::size_t n = width * height;
     for (std::size_t i = 0; i < n; ++i) {
@@ -246,14 +259,19 @@ struct ReductionPass {
 /// (block 4 for the thesis's fragment chain, RK_LUMINANCE_REDUCE_TILE = 64 for the compute chain
 /// of luminance_reduce.glsl). 1024x768 by 4: 256x192, 64x48, 16x12, 4x3, 1x1 (the last pass is a
 /// partial 4x3 block: its texels cover 256 x 256 source pixels each, the output 1024 x 768).
-/// A 1x1 image still gets one pass (1x1 -> 1x1). Throws std::invalid_argument for sizes < 1,
-/// block < 2, or a size above 2^30.
-inline std::vector<ReductionPass> reduction_chain(int width, int height, int block)
+/// A 1x1 image still gets one pass (1x1 -> 1x1). Sizes < 1, block < 2 or a size above 2^30: no
+/// passes, described in *st (status.hpp).
+inline std::vector<ReductionPass> reduction_chain(int width, int height, int block, Status* st = nullptr)
 {
+    detail::reset(st);
     if (width < 1 || height < 1 || width > (1 << 30) || height > (1 << 30)) {
-        throw std::invalid_argument("raykit::reduction_chain: width and height must be in [1, 2^30]");
+        detail::report(st, "raykit::reduction_chain: width and height must be in [1, 2^30]");
+        return {};
     }
-    if (block < 2) throw std::invalid_argument("raykit::reduction_chain: block must be >= 2");
+    if (block < 2) {
+        detail::report(st, "raykit::reduction_chain: block must be >= 2");
+        return {};
+    }
     std::vector<ReductionPass> passes;
     int w = width, h = height;
     long long span = 1;
@@ -294,12 +312,15 @@ inline double reduction_texel_weight(const ReductionPass& pass, int i, int j, in
 /// (rk_reduce_cover) and divides by the weights' sum: the exact mean up to float rounding.
 /// edge_weighted = false is the naive chain (CLAMP_TO_EDGE fetches, every block divided by
 /// block^2), which over-weights the last row/column whenever a level is not a multiple of block.
-/// Throws like reduction_chain, and std::invalid_argument when values.size() != width * height.
-inline float reduce_chain_mean(const std::vector<float>& values, int width, int height, int block, bool edge_weighted)
+/// Bad sizes (as reduction_chain) or values.size() != width * height: returns 0, described in *st.
+inline float reduce_chain_mean(const std::vector<float>& values, int width, int height, int block, bool edge_weighted,
+                               Status* st = nullptr)
 {
-    const std::vector<ReductionPass> chain = reduction_chain(width, height, block);
+    const std::vector<ReductionPass> chain = reduction_chain(width, height, block, st);
+    if (chain.empty()) return 0.0f;
     if (values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
-        throw std::invalid_argument("raykit::reduce_chain_mean: values.size() != width * height");
+        detail::report(st, "raykit::reduce_chain_mean: values.size() != width * height");
+        return 0.0f;
     }
     std::vector<float> level = values, next;
     long long child_span = 1;

@@ -9,11 +9,11 @@
 #pragma once
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "raykit/shader_source.hpp"
+#include "raykit/shader_define.hpp"
+#include "raykit/status.hpp"
 
 namespace raykit {
 
@@ -55,15 +55,18 @@ struct InteriorSceneDesc {
 /// RK_IM_SHADING, RK_IM_COMPOSE_MODE, RK_IM_ROOM_LIGHTS, RK_IM_FURNITURE_LAYERS,
 /// RK_IM_FURNITURE_FLIPBOOK, RK_IM_VARYING_WALLS, RK_IM_REFLECTION, RK_IM_FADE, RK_IM_BUILDING_FACADE,
 /// RK_IM_BUILDING_OUTPUT. RK_IM_FURNITURE_FLIPBOOK is 1 only with furniture and a flipbook.
-/// Throws std::invalid_argument for furniture_layers outside 0..4 or a fade distance that is
-/// negative or not finite. Exact (a table); cost: 10 small strings.
-inline std::vector<ShaderDefine> interior_defines(const InteriorSceneDesc& d)
+/// furniture_layers outside 0..4 or a fade distance that is negative or not finite: an empty set,
+/// described in *st (status.hpp). Exact (a table); cost: 10 small strings.
+inline std::vector<ShaderDefine> interior_defines(const InteriorSceneDesc& d, Status* st = nullptr)
 {
+    detail::reset(st);
     if (d.furniture_layers < 0 || d.furniture_layers > 4) {
-        throw std::invalid_argument("raykit::interior_defines: furniture_layers must be in 0..4");
+        detail::report(st, "raykit::interior_defines: furniture_layers must be in 0..4");
+        return {};
     }
     if (!(d.fade_distance >= 0.0f) || d.fade_distance > 3.4e38f) {
-        throw std::invalid_argument("raykit::interior_defines: fade_distance must be finite and >= 0");
+        detail::report(st, "raykit::interior_defines: fade_distance must be finite and >= 0");
+        return {};
     }
     auto b = [](bool on) { return std::string(on ? "1" : "0"); };
     return {
@@ -98,22 +101,28 @@ struct InteriorAtlasLayout {
 
 /// interior_atlas_layout: the smallest valid padding for `tile`-texel tiles sampled down to mip
 /// `max_lod` (pad = max(1, 2^(max_lod-1)), so the cell is tile + 2^max_lod texels from level 1 on),
-/// in a grid x grid atlas. Throws std::invalid_argument when tile is not
-/// a positive multiple of 2^max_lod, max_lod is outside 0..12, grid < 1, or the atlas would exceed
-/// 65536 texels. Exact integer arithmetic; cost O(1). Its result passes interior_atlas_mip_safe at
-/// every level 0..max_lod (tests/test_interior_features.cpp).
-inline InteriorAtlasLayout interior_atlas_layout(int tile, int grid, int max_lod)
+/// in a grid x grid atlas. When tile is not a positive multiple of 2^max_lod, max_lod is outside
+/// 0..12, grid < 1, or the atlas would exceed 65536 texels: an all-zero layout (size() 0), described
+/// in *st (status.hpp). Exact integer arithmetic; cost O(1). Its result passes
+/// interior_atlas_mip_safe at every level 0..max_lod (tests/test_interior_features.cpp).
+inline InteriorAtlasLayout interior_atlas_layout(int tile, int grid, int max_lod, Status* st = nullptr)
 {
+    detail::reset(st);
     if (max_lod < 0 || max_lod > 12 || grid < 1 || tile < 1 || tile % (1 << max_lod) != 0) {
-        throw std::invalid_argument("raykit::interior_atlas_layout: tile must be a positive multiple of 2^max_lod, "
-                                    "max_lod in 0..12, grid >= 1");
+        detail::report(st, "raykit::interior_atlas_layout: tile must be a positive multiple of 2^max_lod, "
+                           "max_lod in 0..12, grid >= 1");
+        return {};
+    }
+    const int pad = max_lod == 0 ? 1 : 1 << (max_lod - 1);
+    if ((static_cast<long long>(tile) + 2 * pad) * grid > 65536LL) {  // in 64 bits: no int overflow
+        detail::report(st, "raykit::interior_atlas_layout: atlas too large (more than 65536 texels a side)");
+        return {};
     }
     InteriorAtlasLayout l;
     l.tile = tile;
-    l.pad = max_lod == 0 ? 1 : 1 << (max_lod - 1);
+    l.pad = pad;
     l.grid = grid;
     l.max_lod = max_lod;
-    if (static_cast<long>(l.size()) > 65536L) throw std::invalid_argument("raykit::interior_atlas_layout: atlas too large");
     return l;
 }
 

@@ -21,10 +21,10 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <stdexcept>
 #include <vector>
 
 #include "raykit/common.hpp"
+#include "raykit/status.hpp"
 
 namespace raykit {
 #include "raykit/paraboloid.glsl"
@@ -35,10 +35,12 @@ struct EnvImage {
     std::vector<float> rgb;
 
     EnvImage() = default;
+    /// A black w x h image; a size below 1 gives an empty image (0 x 0), which every bake and
+    /// resampling function below refuses with a Status instead of reading it.
     EnvImage(int w, int h)
-        : width(w), height(h), rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3u, 0.0f)
+        : width(w > 0 && h > 0 ? w : 0), height(w > 0 && h > 0 ? h : 0),
+          rgb(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3u, 0.0f)
     {
-        if (w < 1 || h < 1) throw std::invalid_argument("raykit::EnvImage: width and height must be >= 1");
     }
     std::size_t index(int x, int y) const
     {
@@ -63,6 +65,19 @@ struct EnvCubeMap {
     int size = 0;
     std::array<EnvImage, 6> faces;
 };
+
+/// Whether a cube map can be sampled: size >= 1 and six faces of size x size texels.
+inline bool env_cube_valid(const EnvCubeMap& cube)
+{
+    if (cube.size < 1) return false;
+    for (const EnvImage& f : cube.faces) {
+        if (f.width != cube.size || f.height != cube.size ||
+            f.rgb.size() != static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height) * 3u) {
+            return false;
+        }
+    }
+    return true;
+}
 
 /// A dual-paraboloid atlas (paraboloid.glsl): levels[0] is 2 half_size x half_size, left half
 /// +z (hemi = +1), right half -z; levels[l] is the 2x2 box mip of levels[l - 1]. guard_scale is the
@@ -108,12 +123,16 @@ inline vec3 sample_image_bilinear(const EnvImage& img, vec2 uv)
     return glm::mix(a, b, ay);
 }
 
-/// The next mip level by a 2x2 box (GL's glGenerateMipmap for even sizes). Throws
-/// std::invalid_argument for odd sizes: an odd level would mix the halves of an atlas.
-inline EnvImage downsample_box(const EnvImage& src)
+/// The next mip level by a 2x2 box (GL's glGenerateMipmap for even sizes). Odd sizes (an odd level
+/// would mix the halves of an atlas), or an image whose texel count does not match its size: an
+/// empty image, described in *st (status.hpp).
+inline EnvImage downsample_box(const EnvImage& src, Status* st = nullptr)
 {
-    if (src.width % 2 != 0 || src.height % 2 != 0 || src.width < 2 || src.height < 2) {
-        throw std::invalid_argument("raykit::downsample_box: both sizes must be even");
+    detail::reset(st);
+    if (src.width % 2 != 0 || src.height % 2 != 0 || src.width < 2 || src.height < 2 ||
+        src.rgb.size() != static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) * 3u) {
+        detail::report(st, "raykit::downsample_box: both sizes must be even (and the texels match them)");
+        return {};
     }
     EnvImage dst(src.width / 2, src.height / 2);
     for (int y = 0; y < dst.height; ++y) {
@@ -126,13 +145,23 @@ inline EnvImage downsample_box(const EnvImage& src)
     return dst;
 }
 
-/// A mip chain of `levels` levels (levels[0] = base) by repeated 2x2 boxes. Throws
-/// std::invalid_argument when a level would have an odd size (see downsample_box) or levels < 1.
-inline std::vector<EnvImage> generate_env_mips(const EnvImage& base, int levels)
+/// A mip chain of `levels` levels (levels[0] = base) by repeated 2x2 boxes. When a level would have
+/// an odd size (see downsample_box) or levels < 1: an empty vector, described in *st.
+inline std::vector<EnvImage> generate_env_mips(const EnvImage& base, int levels, Status* st = nullptr)
 {
-    if (levels < 1) throw std::invalid_argument("raykit::generate_env_mips: levels must be >= 1");
+    detail::reset(st);
+    if (levels < 1) {
+        detail::report(st, "raykit::generate_env_mips: levels must be >= 1");
+        return {};
+    }
     std::vector<EnvImage> chain{base};
-    for (int l = 1; l < levels; ++l) chain.push_back(downsample_box(chain.back()));
+    for (int l = 1; l < levels; ++l) {
+        chain.push_back(downsample_box(chain.back(), st));
+        if (chain.back().width == 0) {
+            detail::report(st, "raykit::generate_env_mips: level " + std::to_string(l) + " would have an odd size");
+            return {};
+        }
+    }
     return chain;
 }
 
@@ -240,18 +269,20 @@ inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
 
 /// Bakes a cube map of `size` texels per face from a function of direction, each texel the mean
 /// of supersample x supersample evaluations spread evenly over its area (a box filter in texel
-/// space). `env(vec3 unit_dir) -> vec3`. Throws std::invalid_argument for size < 1 or supersample
-/// outside [1, 64].
+/// space). `env(vec3 unit_dir) -> vec3`. size < 1 or supersample outside [1, 64]: an empty map
+/// (size 0), described in *st (status.hpp).
 /// Max error, self-direction content (env(d) = d), against the float64 texel-centre direction of
 /// GL's table 8.19: 4.2e-8 rad with supersample 1 (the texel centre itself); 2.5e-5 rad = 0.0008
 /// texel with 4 (the box filter's mean, size 64; tests/test_paraboloid.cpp
 /// Bake.SelfDirectionMapsTexelsAndLookups). Cost: 6 size^2 supersample^2 env calls, each with a
 /// face direction and a normalisation.
 template <class F>
-EnvCubeMap bake_cube_map(int size, F&& env, int supersample = 4)
+EnvCubeMap bake_cube_map(int size, F&& env, int supersample = 4, Status* st = nullptr)
 {
-    if (size < 1 || supersample < 1 || supersample > 64) {
-        throw std::invalid_argument("raykit::bake_cube_map: size >= 1 and supersample in [1, 64] required");
+    detail::reset(st);
+    if (size < 1 || size > 65536 || supersample < 1 || supersample > 64) {
+        detail::report(st, "raykit::bake_cube_map: size in [1, 65536] and supersample in [1, 64] required");
+        return {};
     }
     EnvCubeMap cube;
     cube.size = size;
@@ -300,9 +331,9 @@ inline float dual_paraboloid_guard_scale(const DualParaboloidBakeOptions& o)
 /// Bakes a dual-paraboloid atlas from a function of direction `env(vec3 unit_dir) -> vec3`: every
 /// texel of level 0 (guard band included, which receives the continuation directions of
 /// rk_dual_paraboloid_dir) is the mean of supersample^2 evaluations spread evenly over its area;
-/// then ceil(max_lod) 2x2 box mips. supersample 0 means 4. Throws std::invalid_argument for
-/// half_size < 2 or not a multiple of 2^ceil(max_lod), max_lod outside [0, 16], supersample
-/// outside [0, 64], or a guard that eats the whole map (guard scale < 0.25).
+/// then ceil(max_lod) 2x2 box mips. supersample 0 means 4. half_size < 2, above 32768 or not a
+/// multiple of 2^ceil(max_lod), max_lod outside [0, 16], supersample outside [0, 64], or a guard
+/// that eats the whole map (guard scale < 0.25): an empty map (half_size 0), described in *st.
 /// Max error, self-direction content, supersample 1: every texel (guard band included) within
 /// 9.4e-8 rad of the float64 direction of its centre from the atlas layout documented in
 /// paraboloid.glsl (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups; the layout
@@ -310,25 +341,28 @@ inline float dual_paraboloid_guard_scale(const DualParaboloidBakeOptions& o)
 /// Cost: 2 H^2 supersample^2 (env + rk_dual_paraboloid_dir + a mat3 product), then the mips
 /// (4 reads and adds per texel of each coarser level).
 template <class F>
-DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptions& o)
+DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptions& o, Status* st = nullptr)
 {
+    detail::reset(st);
     if (!(o.max_lod >= 0.0f && o.max_lod <= 16.0f) || o.supersample < 0 || o.supersample > 64) {
-        throw std::invalid_argument(
-            "raykit::bake_dual_paraboloid: max_lod in [0, 16] and supersample in [0, 64] required");
+        detail::report(st, "raykit::bake_dual_paraboloid: max_lod in [0, 16] and supersample in [0, 64] required");
+        return {};
     }
     const int extra = static_cast<int>(std::ceil(o.max_lod));
-    if (o.half_size < 2 || o.half_size % (1 << extra) != 0) {
-        throw std::invalid_argument(
-            "raykit::bake_dual_paraboloid: half_size must be >= 2 and a multiple of 2^ceil(max_lod)");
+    if (o.half_size < 2 || o.half_size > 32768 || o.half_size % (1 << extra) != 0) {
+        detail::report(st, "raykit::bake_dual_paraboloid: half_size must be in [2, 32768] and a multiple of "
+                           "2^ceil(max_lod)");
+        return {};
+    }
+    if (dual_paraboloid_guard_scale(o) < 0.25f) {
+        detail::report(st, "raykit::bake_dual_paraboloid: the guard band for max_lod leaves less than a quarter of "
+                           "the map");
+        return {};
     }
     DualParaboloidMap map;
     map.half_size = o.half_size;
     map.max_lod = o.max_lod;
     map.guard_scale = dual_paraboloid_guard_scale(o);
-    if (map.guard_scale < 0.25f) {
-        throw std::invalid_argument(
-            "raykit::bake_dual_paraboloid: the guard band for max_lod leaves less than a quarter of the map");
-    }
     const int ssi = o.supersample == 0 ? 4 : o.supersample;
     const float ss = static_cast<float>(ssi);
     const int w = 2 * o.half_size, h = o.half_size;
@@ -364,7 +398,7 @@ inline int dual_paraboloid_auto_supersample(int cube_size, int half_size, float 
 /// The thesis's step 2: a cube map resampled into a dual-paraboloid atlas (both hemispheres, the
 /// guard band filled), each texel the box-filtered mean of supersampled seamless bilinear cube
 /// lookups (options.supersample = 0: dual_paraboloid_auto_supersample), plus ceil(max_lod) mips.
-/// Throws as bake_dual_paraboloid_fn, and for an empty cube.
+/// Fails as bake_dual_paraboloid_fn, and for an empty cube (an empty map, described in *st).
 /// Max error, self-direction cube of 64 texels into H = 64 (max_lod 2, automatic supersampling):
 /// 1.2e-3 rad = 0.056 of the local texel angle against the float64 direction of every texel
 /// centre from the documented layout, guard band included (tests/test_paraboloid.cpp
@@ -375,13 +409,17 @@ inline int dual_paraboloid_auto_supersample(int cube_size, int half_size, float 
 /// of the rest is the cube's own resolution); one sample per texel errs by 0.60 (RMS 0.22), 2 x 2
 /// by 0.31 (RMS 0.06) (Bake.CubeToDualParaboloidTexelsAreSolidAngleMeans asserts 0.1, RMS 0.02).
 /// Cost: 2 H^2 supersample^2 sample_cube_map + rk_dual_paraboloid_dir, then the mips.
-inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParaboloidBakeOptions o)
+inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParaboloidBakeOptions o, Status* st = nullptr)
 {
-    if (cube.size < 1) throw std::invalid_argument("raykit::bake_dual_paraboloid: empty cube map");
+    detail::reset(st);
+    if (!env_cube_valid(cube)) {
+        detail::report(st, "raykit::bake_dual_paraboloid: empty or inconsistent cube map");
+        return {};
+    }
     if (o.supersample == 0) {
         o.supersample = dual_paraboloid_auto_supersample(cube.size, o.half_size, dual_paraboloid_guard_scale(o));
     }
-    return bake_dual_paraboloid_fn([&cube](vec3 d) { return sample_cube_map(cube, d); }, o);
+    return bake_dual_paraboloid_fn([&cube](vec3 d) { return sample_cube_map(cube, d); }, o, st);
 }
 
 /// Lookup of a dual-paraboloid atlas along dir (any non-zero length) at an explicit LOD, clamped
@@ -421,20 +459,23 @@ inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float
 /// guard_scale 1 the rim touches the edges (the thesis's layout), with g < 1 a guard ring of
 /// continuation directions surrounds the disk. Each texel is the mean of supersample^2
 /// evaluations of env(world_dir) over its area. Look up with rk_paraboloid_sample_biased or
-/// sample_paraboloid. Throws std::invalid_argument for size < 1, supersample outside [1, 64] or
-/// guard_scale outside [RK_PARABOLOID_GUARD_MIN, 1].
+/// sample_paraboloid. size outside [1, 65536], supersample outside [1, 64] or guard_scale outside
+/// [RK_PARABOLOID_GUARD_MIN, 1]: an empty image, described in *st (status.hpp).
 /// Max error, self-direction content (identity frame, hemi -1, g = 1, 64 texels), against the
 /// float64 direction of each texel centre (st = (2 uv - 1) / g, decoded): 4.3e-8 rad with
 /// supersample 1, 1.5e-7 rad with 4 (tests/test_paraboloid.cpp
 /// Bake.SelfDirectionMapsTexelsAndLookups). Cost: size^2 supersample^2 (rk_paraboloid_decode + a
 /// mat3 product + env).
 template <class F>
-EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float guard_scale = 1.0f, int supersample = 4)
+EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float guard_scale = 1.0f, int supersample = 4,
+                            Status* status = nullptr)
 {
-    if (size < 1 || supersample < 1 || supersample > 64 ||
+    detail::reset(status);
+    if (size < 1 || size > 65536 || supersample < 1 || supersample > 64 ||
         !(guard_scale >= RK_PARABOLOID_GUARD_MIN && guard_scale <= 1.0f)) {
-        throw std::invalid_argument(
-            "raykit::bake_paraboloid: size >= 1, supersample in [1, 64], guard_scale in (0, 1] required");
+        detail::report(status, "raykit::bake_paraboloid: size in [1, 65536], supersample in [1, 64], guard_scale in "
+                           "[RK_PARABOLOID_GUARD_MIN, 1] required");
+        return {};
     }
     EnvImage img(size, size);
     const float n = static_cast<float>(size), ss = static_cast<float>(supersample);
@@ -456,23 +497,27 @@ EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float gua
 }
 
 /// bake_paraboloid_fn from a cube map (seamless bilinear lookups; supersample 0 chooses about two
-/// samples per cube texel where the map's texels are largest, as for the atlas). Throws as
-/// bake_paraboloid_fn, and for an empty cube.
+/// samples per cube texel where the map's texels are largest, as for the atlas). Fails as
+/// bake_paraboloid_fn, and for an empty cube (an empty image, described in *st).
 /// Max error: a window-frame map (64 texels) from a self-direction cube of 48 texels looks up
 /// within 1.3e-3 rad of the direction over the half-space the window reflects
 /// (tests/test_paraboloid.cpp Bake.WindowFrameMapsAndSingleParaboloid asserts 0.01 rad).
 /// Cost: size^2 supersample^2 sample_cube_map.
 inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, float hemi, float guard_scale = 1.0f,
-                                int supersample = 0)
+                                int supersample = 0, Status* st = nullptr)
 {
-    if (cube.size < 1) throw std::invalid_argument("raykit::bake_paraboloid: empty cube map");
+    detail::reset(st);
+    if (!env_cube_valid(cube)) {
+        detail::report(st, "raykit::bake_paraboloid: empty or inconsistent cube map");
+        return {};
+    }
     if (supersample == 0) {
         const float r = 4.0f * static_cast<float>(cube.size) /
                         (std::max(guard_scale, RK_PARABOLOID_GUARD_MIN) * static_cast<float>(std::max(size, 1)));
         supersample = std::clamp(static_cast<int>(std::ceil(r)), 2, 16);
     }
     return bake_paraboloid_fn([&cube](vec3 d) { return sample_cube_map(cube, d); }, size, frame, hemi, guard_scale,
-                              supersample);
+                              supersample, st);
 }
 
 /// Bilinear lookup of a single paraboloid map along the local direction dir (world * frame),
@@ -497,12 +542,18 @@ inline vec3 sample_paraboloid(const EnvImage& map, vec3 dir, float hemi, float g
 }
 
 /// The inverse resampling (atlas -> cube), for tests: each cube texel the mean of
-/// supersample^2 level-0 lookups (sample_dual_paraboloid) over its area. Throws
-/// std::invalid_argument for size < 1 or supersample outside [1, 64].
-inline EnvCubeMap cube_from_dual_paraboloid(const DualParaboloidMap& map, int size, int supersample = 2)
+/// supersample^2 level-0 lookups (sample_dual_paraboloid) over its area. Fails as bake_cube_map,
+/// and for a map without levels (an empty cube, described in *st).
+inline EnvCubeMap cube_from_dual_paraboloid(const DualParaboloidMap& map, int size, int supersample = 2,
+                                            Status* st = nullptr)
 {
+    if (map.levels.empty() || map.levels[0].width != 2 * map.half_size || map.levels[0].height != map.half_size ||
+        map.half_size < 1) {
+        detail::report(st, "raykit::cube_from_dual_paraboloid: empty or inconsistent map");
+        return {};
+    }
     return bake_cube_map(
-        size, [&map](vec3 d) { return sample_dual_paraboloid(map, d, 0.0f); }, supersample);
+        size, [&map](vec3 d) { return sample_dual_paraboloid(map, d, 0.0f); }, supersample, st);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -545,18 +596,20 @@ inline vec3 octahedral_decode(vec2 p_in)
 }
 
 /// Bakes an octahedral map of size x size texels (uv = 0.5 p + 0.5) from a function of direction,
-/// supersample^2 evaluations per texel. Throws std::invalid_argument for size < 2 or supersample
-/// outside [1, 64].
+/// supersample^2 evaluations per texel. size outside [2, 65536] or supersample outside [1, 64]: an
+/// empty map (size 0), described in *st (status.hpp).
 /// Max error, self-direction content, 64 texels, against the float64 decode of each texel centre:
 /// 4.2e-8 rad with supersample 1; with 4, 4.9e-3 rad = 0.064 of the largest texel angle (0.0765
 /// rad) for texels that straddle a fold, where the mapping has a kink and the box filter's mean
 /// leaves the centre direction (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups).
 /// Cost: size^2 supersample^2 (octahedral_decode + env).
 template <class F>
-OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4)
+OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4, Status* st = nullptr)
 {
-    if (size < 2 || supersample < 1 || supersample > 64) {
-        throw std::invalid_argument("raykit::bake_octahedral: size >= 2 and supersample in [1, 64] required");
+    detail::reset(st);
+    if (size < 2 || size > 65536 || supersample < 1 || supersample > 64) {
+        detail::report(st, "raykit::bake_octahedral: size in [2, 65536] and supersample in [1, 64] required");
+        return {};
     }
     OctahedralMap map;
     map.size = size;
@@ -579,21 +632,25 @@ OctahedralMap bake_octahedral_fn(int size, F&& env, int supersample = 4)
 }
 
 /// An octahedral map resampled from a cube map (supersample 0: ceil(5 cube_size / size) clamped to
-/// [2, 16], about two samples per cube texel where the octahedral texels are largest). Throws as
-/// bake_octahedral_fn, and for an empty cube. Accuracy against the source cube at the cube's
+/// [2, 16], about two samples per cube texel where the octahedral texels are largest). Fails as
+/// bake_octahedral_fn, and for an empty cube (an empty map, described in *st). Accuracy against the source cube at the cube's
 /// texel budget: tests/test_paraboloid.cpp Accuracy.EqualTexelBudgetsDualParaboloidVsOctahedral
 /// (56.2 dB PSNR from a 64-texel cube of a synthetic city, vs 51.8 dB for the dual paraboloid).
 /// Cost: size^2 supersample^2 (octahedral_decode + sample_cube_map).
-inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int supersample = 0)
+inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int supersample = 0, Status* st = nullptr)
 {
-    if (cube.size < 1) throw std::invalid_argument("raykit::bake_octahedral: empty cube map");
+    detail::reset(st);
+    if (!env_cube_valid(cube)) {
+        detail::report(st, "raykit::bake_octahedral: empty or inconsistent cube map");
+        return {};
+    }
     if (supersample == 0) {
         supersample = std::clamp(
             static_cast<int>(std::ceil(5.0f * static_cast<float>(cube.size) / static_cast<float>(std::max(size, 1)))),
             2, 16);
     }
     return bake_octahedral_fn(
-        size, [&cube](vec3 d) { return sample_cube_map(cube, d); }, supersample);
+        size, [&cube](vec3 d) { return sample_cube_map(cube, d); }, supersample, st);
 }
 
 /// Bilinear lookup of an octahedral map along dir with the map's fold-over edges (a tap past an

@@ -16,6 +16,7 @@
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
+#include "raykit/status.hpp"
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"
 #include "raykit/svo_format.hpp"

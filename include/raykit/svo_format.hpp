@@ -3,8 +3,8 @@
 // reads back and an application uploads to the GPU. The layout is documented in
 // docs/svo-format.md.
 //
-// No exceptions: functions that can fail take an SvoStatus& and return false (or an empty result)
-// with a message; allocation failure is left to the C++ runtime, as in the rest of raykit.
+// No exceptions: functions that can fail take an SvoStatus& (raykit::Status, status.hpp) and return
+// false (or an empty result) with a message.
 #pragma once
 
 #include <cstddef>
@@ -14,60 +14,15 @@
 
 #include "raykit/color.hpp"
 #include "raykit/common.hpp"
+#include "raykit/status.hpp"
 
 namespace raykit {
 #include "raykit/svo_format.glsl"
 
-/// Why an octree operation failed. `ok` means it did not.
-enum class SvoError {
-    ok = 0,
-    invalid_argument,   ///< an option or argument outside its documented range
-    empty_mesh,         ///< no triangle survived validation (all degenerate, NaN, out of range)
-    budget_exceeded,    ///< the estimated or measured memory exceeds the caller's budget
-    cancelled,          ///< the progress callback asked to stop
-    too_large,          ///< the tree exceeds the format's limits (2^32 words, 2^32 attributes)
-    io,                 ///< a file could not be opened, read or written
-    bad_magic,          ///< not a raykit octree file
-    unsupported_version,
-    truncated,          ///< the file ends before what its header announces
-    corrupt,            ///< a count, offset, pointer or mask is inconsistent
-    checksum_mismatch,  ///< the payload does not match its checksum
-};
-
-/// svo_error_name: the enumerator's name ("ok", "checksum_mismatch", ...), for logs and tests.
-inline const char* svo_error_name(SvoError e)
-{
-    switch (e) {
-        case SvoError::ok: return "ok";
-        case SvoError::invalid_argument: return "invalid_argument";
-        case SvoError::empty_mesh: return "empty_mesh";
-        case SvoError::budget_exceeded: return "budget_exceeded";
-        case SvoError::cancelled: return "cancelled";
-        case SvoError::too_large: return "too_large";
-        case SvoError::io: return "io";
-        case SvoError::bad_magic: return "bad_magic";
-        case SvoError::unsupported_version: return "unsupported_version";
-        case SvoError::truncated: return "truncated";
-        case SvoError::corrupt: return "corrupt";
-        case SvoError::checksum_mismatch: return "checksum_mismatch";
-    }
-    return "?";
-}
-
-/// Outcome of an octree operation: `code` and a human-readable message naming what was wrong.
-struct SvoStatus {
-    SvoError code = SvoError::ok;
-    std::string message;
-    bool ok() const { return code == SvoError::ok; }
-    explicit operator bool() const { return ok(); }
-    /// Records an error and returns false, so a function can `return st.fail(...)`.
-    bool fail(SvoError c, std::string m)
-    {
-        code = c;
-        message = std::move(m);
-        return false;
-    }
-};
+/// The octree's names for raykit's error type (status.hpp): SvoStatus is a Status.
+using SvoError = Error;
+using SvoStatus = Status;
+inline const char* svo_error_name(SvoError e) { return error_name(e); }
 
 /// Per-material values carried by the material table of a tree (RK_SVO_ATTR_MATERIAL): what a
 /// traversal needs for secondary rays. A voxel stores the index into this table.

@@ -202,7 +202,7 @@ public:
     explicit BloomGl(const std::string& shader_dir, GLenum format = GL_RGBA16F) : format_(format)
     {
         auto build = [&](const char* name, std::vector<std::pair<GLenum, std::string>> stages) {
-            for (auto& st : stages) st.second = raykit::resolve_shader_includes(st.second, name, shader_dir, {shader_dir});
+            for (auto& st : stages) st.second = resolved_shader(st.second, name, shader_dir, {shader_dir});
             return build_program(stages);
         };
         const std::string vs = bloom_detail::vertex_source();
@@ -252,7 +252,8 @@ public:
     /// Sets the parameters (raykit::validate_bloom_params) and recomputes the merged taps.
     void set_params(const raykit::BloomParams& p)
     {
-        raykit::validate_bloom_params(p);
+        raykit::Status st;
+        if (!raykit::validate_bloom_params(p, &st)) throw std::invalid_argument(st.message);
         params_ = p;
         taps_ = raykit::linear_sampled_taps(raykit::gaussian_weights(p.sigma, p.radius));
         if (taps_.size() > RK_BLOOM_MAX_TAPS) throw std::invalid_argument("rkgl::BloomGl: too many taps");

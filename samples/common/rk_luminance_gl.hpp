@@ -109,7 +109,9 @@ public:
         if (channels != 1 && channels != 3 && channels != 4) {
             throw std::invalid_argument("rkgl::LuminanceReducer: channels must be 1, 3 or 4");
         }
-        const std::vector<raykit::ReductionPass> chain = raykit::reduction_chain(width, height, kTile);
+        raykit::Status st;
+        const std::vector<raykit::ReductionPass> chain = raykit::reduction_chain(width, height, kTile, &st);
+        if (!st) throw std::invalid_argument("rkgl::LuminanceReducer: " + st.message);
         std::vector<GLuint> offsets(1, 0u);
         for (const raykit::ReductionPass& p : chain) {
             offsets.push_back(offsets.back() + static_cast<GLuint>(p.out_width * p.out_height));
@@ -251,12 +253,12 @@ private:
     }
     static GLuint build(const std::string& shader_dir, const std::string& main_src, int source_kind, const std::string& name)
     {
-        std::string src = raykit::inject_shader_defines(
-            main_src, {{"RK_LUMINANCE_REDUCE_SOURCE", std::to_string(source_kind)},
-                       {"RK_LUMINANCE_REDUCE_GROUP", std::to_string(kGroup)},
-                       {"RK_LUMINANCE_REDUCE_THREAD_TILE", std::to_string(kThreadTile)},
-                       {"RK_LUMINANCE_HISTOGRAM_BINS", std::to_string(kBins)}});
-        src = raykit::resolve_shader_includes(src, name, shader_dir, {shader_dir});
+        const std::string src =
+            resolved_shader(main_src, name, shader_dir, {shader_dir},
+                            {{"RK_LUMINANCE_REDUCE_SOURCE", std::to_string(source_kind)},
+                             {"RK_LUMINANCE_REDUCE_GROUP", std::to_string(kGroup)},
+                             {"RK_LUMINANCE_REDUCE_THREAD_TILE", std::to_string(kThreadTile)},
+                             {"RK_LUMINANCE_HISTOGRAM_BINS", std::to_string(kBins)}});
         return build_program({{GL_COMPUTE_SHADER, src}});
     }
     void ensure_scratch(GLuint floats)
