@@ -529,7 +529,7 @@ bool file_exists(const std::string& path)
 
 std::string load(const std::string& path, const std::vector<raykit::ShaderDefine>& defines)
 {
-    return raykit::load_shader_file(path, {RAYKIT_SHADER_DIR}, defines);
+    return rkgl::shader_file(path, {RAYKIT_SHADER_DIR}, defines);
 }
 
 glm::vec3 room_size_for(double rooms_per_building)

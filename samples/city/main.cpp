@@ -185,7 +185,7 @@ struct FrameUbo {
 
 std::string read_city_shader(const std::string& file, const std::vector<raykit::ShaderDefine>& defines)
 {
-    return raykit::load_shader_file(std::string(SAMPLES_DIR) + "/city/" + file, {std::string(SAMPLES_DIR) + "/city", RAYKIT_SHADER_DIR},
+    return rkgl::shader_file(std::string(SAMPLES_DIR) + "/city/" + file, {std::string(SAMPLES_DIR) + "/city", RAYKIT_SHADER_DIR},
                                     defines);
 }
 

@@ -152,6 +152,35 @@ inline int no_context_exit(const char* program, const std::string& error)
     return ci ? 1 : 77;
 }
 
+/// A shader's text with its includes resolved and `defines` injected after #version
+/// (raykit::resolve_shader; `dir` is searched first, then include_dirs). The samples use
+/// exceptions, raykit does not: a resolver error becomes std::runtime_error here.
+inline std::string resolved_shader(const std::string& source, const std::string& name, const std::string& dir,
+                                   const std::vector<std::string>& include_dirs,
+                                   const std::vector<raykit::ShaderDefine>& defines = {})
+{
+    raykit::ShaderSourceOptions opt;
+    opt.include_dirs = include_dirs;
+    opt.defines = defines;
+    raykit::ShaderSource out;
+    raykit::Status st;
+    if (!raykit::resolve_shader(source, name, dir, opt, out, st)) throw std::runtime_error(st.message);
+    return out.text;
+}
+
+/// The file at `path`, resolved as resolved_shader does (its own folder searched first).
+inline std::string shader_file(const std::string& path, const std::vector<std::string>& include_dirs,
+                               const std::vector<raykit::ShaderDefine>& defines = {})
+{
+    raykit::ShaderSourceOptions opt;
+    opt.include_dirs = include_dirs;
+    opt.defines = defines;
+    raykit::ShaderSource out;
+    raykit::Status st;
+    if (!raykit::load_shader(path, opt, out, st)) throw std::runtime_error(st.message);
+    return out.text;
+}
+
 /// Compiles and links a program from (stage, source) pairs; throws std::runtime_error with the
 /// driver's log (and the failing source's numbered lines nearby) on failure.
 inline GLuint build_program(const std::vector<std::pair<GLenum, std::string>>& stages)

@@ -309,9 +309,9 @@ public:
         // Programs: 0 plain, 1 LOD, 2 secondary rays (only for trees with materials).
         for (int k = 0; k < 3; ++k) {
             if (k == 2 && tree.material.empty()) break;
-            std::string fs = raykit::inject_shader_defines(
-                svo_fragment_source(), {{"RK_SVO_TRAVERSE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
-            fs = raykit::resolve_shader_includes(fs, "svo_pass.frag", shader_dir, {shader_dir});
+            const std::string fs = resolved_shader(
+                svo_fragment_source(), "svo_pass.frag", shader_dir, {shader_dir},
+                {{"RK_SVO_TRAVERSE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
             prog_[k] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
         }
         if (!tree.material.empty()) {

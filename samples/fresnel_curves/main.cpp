@@ -198,7 +198,7 @@ int run(const char* out_path)
 
     const std::string frag_path = std::string(SAMPLES_DIR) + "/fresnel_curves/fresnel_curves.frag";
     const GLuint plot = rkgl::build_program({{GL_VERTEX_SHADER, kFullscreenVert},
-                                             {GL_FRAGMENT_SHADER, raykit::load_shader_file(frag_path, {RAYKIT_SHADER_DIR})}});
+                                             {GL_FRAGMENT_SHADER, rkgl::shader_file(frag_path, {RAYKIT_SHADER_DIR})}});
 
     rkgl::Framebuffer fb(kWidth, kHeight);
     GLuint vao = 0;

@@ -249,7 +249,7 @@ int run(const char* out_path)
     auto build = [&](std::vector<raykit::ShaderDefine> defines, Mode mode) {
         defines.push_back({"GALLERY_MODE", std::to_string(static_cast<int>(mode))});
         return rkgl::build_program({{GL_VERTEX_SHADER, kFullscreenVert},
-                                    {GL_FRAGMENT_SHADER, raykit::load_shader_file(frag_path, {RAYKIT_SHADER_DIR}, defines)}});
+                                    {GL_FRAGMENT_SHADER, rkgl::shader_file(frag_path, {RAYKIT_SHADER_DIR}, defines)}});
     };
 
     GLuint vao = 0;

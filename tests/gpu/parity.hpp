@@ -142,8 +142,7 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
     const std::vector<float> in = make_inputs(c, random_rows, 20261122u);
     const size_t rows = in.size() / n_in;
 
-    std::string src = raykit::inject_shader_defines(compute_source(c), c.defines);
-    src = raykit::resolve_shader_includes(src, c.name + ".comp", shader_dir, {shader_dir});
+    const std::string src = rkgl::resolved_shader(compute_source(c), c.name + ".comp", shader_dir, {shader_dir}, c.defines);
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
     GLuint bin = rkgl::make_buffer(in.size() * sizeof(float), in.data());
     GLuint bout = rkgl::make_buffer(rows * n_out * sizeof(float), nullptr);

@@ -400,8 +400,8 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
         std::string vs, fs;
         GLuint prog = 0;
         try {
-            vs = load_shader_file(samples + "interior_building.vert", {dir}, defs);
-            fs = load_shader_file(samples + "interior_building.frag", {dir}, defs);
+            vs = rkgl::shader_file(samples + "interior_building.vert", {dir}, defs);
+            fs = rkgl::shader_file(samples + "interior_building.frag", {dir}, defs);
             prog = rkgl::build_program({{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}});
         } catch (const std::exception& e) {
             ADD_FAILURE() << variant_name(defs) << ": " << e.what();
@@ -573,8 +573,8 @@ struct FacadeRig {
         const std::string dir = parity::shader_dir(), samples = dir + "/../samples/common/";
         GLuint prog = 0;
         try {
-            prog = rkgl::build_program({{GL_VERTEX_SHADER, load_shader_file(samples + "interior_building.vert", {dir}, defs)},
-                                        {GL_FRAGMENT_SHADER, load_shader_file(samples + "interior_building.frag", {dir}, defs)}});
+            prog = rkgl::build_program({{GL_VERTEX_SHADER, rkgl::shader_file(samples + "interior_building.vert", {dir}, defs)},
+                                        {GL_FRAGMENT_SHADER, rkgl::shader_file(samples + "interior_building.frag", {dir}, defs)}});
         } catch (const std::exception& e) {
             ADD_FAILURE() << variant_name(defs) << ": " << e.what();
             return 0;

@@ -378,7 +378,7 @@ GLuint fullscreen_program(const std::string& fs, const char* name)
         " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
     return rkgl::build_program(
         {{GL_VERTEX_SHADER, vs},
-         {GL_FRAGMENT_SHADER, raykit::resolve_shader_includes(fs, name, parity::shader_dir(), {parity::shader_dir()})}});
+         {GL_FRAGMENT_SHADER, rkgl::resolved_shader(fs, name, parity::shader_dir(), {parity::shader_dir()})}});
 }
 
 }  // namespace

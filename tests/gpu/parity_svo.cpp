@@ -100,8 +100,7 @@ std::vector<uint32_t> gpu_lookup(const SvoTree& t, const std::vector<glm::uvec4>
     src += "  rk_svo_hit h = rk_svo_lookup(0u, rk_tree.x, rk_tree.y, rk_tree.z, uvec3(c.x, c.y, c.z), c.w);\n";
     src += "  rk_out[3u * i] = h.found ? 1u : 0u; rk_out[3u * i + 1u] = h.level; rk_out[3u * i + 2u] = h.attr;\n}\n";
     std::vector<ShaderDefine> defs = {{"RK_SVO_WORDS_BINDING", "0"}, {"RK_SVO_BUFFER_TEXTURE", texture ? "1" : "0"}};
-    src = inject_shader_defines(src, defs);
-    src = resolve_shader_includes(src, "svo_lookup.comp", parity::shader_dir(), {parity::shader_dir()});
+    src = rkgl::resolved_shader(src, "svo_lookup.comp", parity::shader_dir(), {parity::shader_dir()}, defs);
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
     const rkgl::SvoWordsGl bound_words(words, texture);
     GLuint bcells = rkgl::make_buffer(cells.size() * sizeof(glm::uvec4), cells.data());

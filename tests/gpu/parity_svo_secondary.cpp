@@ -82,8 +82,8 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
     src += "  rk_out[3u * i] = vec4(r.origin, r.transmittance.x);\n";
     src += "  rk_out[3u * i + 1u] = vec4(r.dir, r.reflectance);\n";
     src += "  rk_out[3u * i + 2u] = vec4(float(r.interfaces), r.hit ? 1.0 : 0.0, sh ? 1.0 : 0.0, 0.0);\n}\n";  // small integers, exact
-    src = inject_shader_defines(src, {{"RK_SVO_WORDS_BINDING", "0"}});
-    src = resolve_shader_includes(src, "svo_secondary.comp", parity::shader_dir(), {parity::shader_dir()});
+    src = rkgl::resolved_shader(src, "svo_secondary.comp", parity::shader_dir(), {parity::shader_dir()},
+                                {{"RK_SVO_WORDS_BINDING", "0"}});
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
     GLuint bw = rkgl::make_buffer(words.size() * 4, words.data());
     GLuint bids = rkgl::make_buffer(ids.size() * 4, ids.data());

@@ -76,8 +76,7 @@ inline std::vector<Out> gpu_trace(const raykit::SvoTree& t, const raykit::rk_svo
     std::vector<ShaderDefine> defs = {{"RK_SVO_WORDS_BINDING", "0"},
                                       {"RK_SVO_BUFFER_TEXTURE", texture ? "1" : "0"},
                                       {"RK_SVO_TRAVERSE_LOD", lod ? "1" : "0"}};
-    src = inject_shader_defines(src, defs);
-    src = resolve_shader_includes(src, "svo_trace.comp", parity::shader_dir(), {parity::shader_dir()});
+    src = rkgl::resolved_shader(src, "svo_trace.comp", parity::shader_dir(), {parity::shader_dir()}, defs);
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
     const rkgl::SvoWordsGl bound_words(words, texture);
     std::vector<glm::vec4> rv;
