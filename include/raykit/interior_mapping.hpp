@@ -19,6 +19,15 @@
 namespace raykit {
 #include "raykit/interior_mapping.glsl"
 
+/// The fields of rk_im_grid for gpu_pack (raykit/gpu_layout.hpp). In a block, origin is at byte 16
+/// (12 in the C++ struct): upload with gpu_pack, never memcpy.
+template <class V>
+void rk_gpu_fields(V& v, const rk_im_grid& s)
+{
+    v("room_size", s.room_size);
+    v("origin", s.origin);
+}
+
 /// camera_to_object_space: the camera position in a building's object space,
 /// inverse(world_from_object) * (cam_world, 1), computed in double precision (inverse and
 /// product) and rounded once to float. This is the `cam` uniform of rk_im_trace. A singular

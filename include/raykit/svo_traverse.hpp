@@ -40,5 +40,17 @@ inline rk_svo_tree svo_trace_tree(const SvoTree& t, uint32_t max_level = ~0u)
     r.root_size = t.root_size;
     return r;
 }
+
+/// The fields of rk_svo_tree for gpu_pack (raykit/gpu_layout.hpp): to upload it as a uniform block.
+template <class V>
+void rk_gpu_fields(V& v, const rk_svo_tree& s)
+{
+    v("depth", s.depth);
+    v("max_level", s.max_level);
+    v("desc_words", s.desc_words);
+    v("brick_base_word", s.brick_base_word);
+    v("root_min", s.root_min);
+    v("root_size", s.root_size);
+}
 }  // namespace RK_SVO_TRAVERSE_NS
 }  // namespace raykit

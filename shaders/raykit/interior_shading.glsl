@@ -52,6 +52,7 @@
 #include "interior_furniture.glsl"
 #include "interior_compose.glsl"
 #include "interior_surface.glsl"
+#include "interior_params.glsl"
 
 #ifndef RK_IM_SHADING
 #define RK_IM_SHADING 0
@@ -59,35 +60,6 @@
 #if RK_IM_SHADING < 0 || RK_IM_SHADING > 3
 #error "RK_IM_SHADING must be 0, 1, 2 or 3"
 #endif
-
-/// Everything rk_im_shade_window needs besides the samplers. Fields of features that are compiled
-/// out are not read. Units: object space unless stated.
-struct rk_im_window_params {
-    rk_im_grid grid;
-    vec3 normal;            // facade outward normal (object space, UNIT length: rk_im_furniture_unit)
-    vec3 tangent;           // facade frame for the furniture UVs (see interior_furniture.glsl)
-    vec3 bitangent;
-    uint seed;              // per building: all per-room randomness derives from it
-    vec3 jitter;            // RK_IM_VARYING_WALLS: wall displacement per axis, room units in [0, 1)
-    float variants;         // RK_IM_SHADING 1/2: variants V per surface kind; 3: number of cube maps N
-    vec4 atlas;             // RK_IM_SHADING 2: (grid, cell texels, pad texels, max_lod)
-    float tint_amount;      // RK_IM_SHADING 3: per-room tint strength in [0, 1]
-    float lit_probability;  // RK_IM_ROOM_LIGHTS: c of rk_im_room_light
-    vec3 light_warm;
-    vec3 light_cool;
-    vec2 light_level;
-    float unlit;            // light multiplier of unlit rooms (RK_IM_UNLIT_DEFAULT)
-    vec3 glass_tint;        // transmission tint of the glass, [0, 1]
-    float glass_eta;        // 1.52 for window glass
-    float glass_panes;      // read by RK_WINDOW_GLASS_FRESNEL 1 / RK_FRESNEL_WINDOW_MODE 3
-    vec4 furniture_depth;   // RK_IM_FURNITURE_LAYERS: plane depth behind the facade per layer
-    ivec4 flipbook;         // (columns, rows, frame count, unused) of every sprite sheet
-    float flipbook_fps;
-    float time;             // seconds
-    float alpha_threshold;  // sprite alpha test
-    vec2 fade_range;        // RK_IM_FADE: (start, end) of the fade band, in the units of view_distance
-    vec3 average_colour;    // RK_IM_FADE: the flat stand-in colour (also used when the trace is invalid)
-};
 
 #if RK_IM_SHADING == 0
 /// rk_im_shade_four: the thesis's four textures, one textureGrad of the hit's family and side.
