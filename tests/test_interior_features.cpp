@@ -29,9 +29,11 @@ std::map<std::string, std::string> as_map(const std::vector<ShaderDefine>& v)
 
 }  // namespace
 
-TEST(InteriorFeatures, DefaultSceneIsTheThesisMaterial)
+TEST(InteriorFeatures, DefaultSceneIsTheRecommendedMaterial)
 {
-    const auto m = as_map(interior_defines(InteriorSceneDesc{}));
+    // The default follows the docs' recommendation (a texture array); thesis() is four textures.
+    EXPECT_EQ(as_map(interior_defines(InteriorSceneDesc{})).at("RK_IM_SHADING"), "1");
+    const auto m = as_map(interior_defines(InteriorSceneDesc::thesis()));
     EXPECT_EQ(m.size(), 10u);
     EXPECT_EQ(m.at("RK_IM_SHADING"), "0");
     EXPECT_EQ(m.at("RK_IM_COMPOSE_MODE"), "0");

@@ -379,3 +379,30 @@ TEST(Dialect, SharedFilesFollowTheRules)
         }
     }
 }
+
+// The README's macro table lists every option macro (each `#ifndef RK_X / #define RK_X` default
+// in shaders/raykit/*.glsl, include guards aside).
+TEST(Dialect, ReadmeListsEveryOptionMacro)
+{
+    std::string readme;
+    ASSERT_TRUE(raykit::detail::read_text_file(std::string(RAYKIT_SAMPLES_DIR) + "/../README.md", readme));
+    DIR* d = opendir((kShaders + "/raykit").c_str());
+    ASSERT_NE(d, nullptr);
+    const std::regex option(R"(#ifndef (RK_[A-Z0-9_]+)\n#define \1)");
+    int n = 0;
+    while (dirent* e = readdir(d)) {
+        const std::string name = e->d_name;
+        if (name.size() < 6 || name.compare(name.size() - 5, 5, ".glsl") != 0) continue;
+        std::string text;
+        ASSERT_TRUE(raykit::detail::read_text_file(kShaders + "/raykit/" + name, text));
+        for (std::sregex_iterator it(text.begin(), text.end(), option), end; it != end; ++it) {
+            const std::string m = (*it)[1];
+            if (m.size() > 5 && m.compare(m.size() - 5, 5, "_GLSL") == 0) continue;
+            ++n;
+            EXPECT_TRUE(readme.find("`" + m + "`") != std::string::npos || readme.find("`" + m + "(") != std::string::npos)
+                << name << ": " << m << " is not in the README's macro table";
+        }
+    }
+    closedir(d);
+    EXPECT_GE(n, 29);
+}

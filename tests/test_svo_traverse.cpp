@@ -109,7 +109,7 @@ void check_ray(const char* what, const svotrace::Ray& ray, const rk_svo_trace_hi
     const double dist = glm::length(o - (rmin + 0.5 * rs)) / rs;
     const double tol = ray_tol(ray, t);
     std::string why;
-    bool ok = std::isfinite(h.t) && h.iterations < RK_SVO_TRAVERSE_MAX_ITER;
+    bool ok = std::isfinite(h.t) && h.iterations < uint(RK_SVO_TRAVERSE_MAX_ITER);
     if (!ok) why = "non-finite t or iteration bound reached";
     if (ok && h.hit) {
         ++st.hits;
@@ -248,7 +248,7 @@ TEST(SvoTrace, RandomTreesAgainstDenseDda)
         }
     }
     EXPECT_GE(total, 1000000);
-    std::printf("[trace] random trees: %ld rays, max %u iterations (bound %u)\n", total, max_iter, RK_SVO_TRAVERSE_MAX_ITER);
+    std::printf("[trace] random trees: %ld rays, max %u iterations (bound %u)\n", total, max_iter, uint(RK_SVO_TRAVERSE_MAX_ITER));
 }
 
 TEST(SvoTrace, VoxelisedMeshesAgainstDenseDda)
@@ -375,10 +375,10 @@ TEST(SvoTrace, GrazingRaysStayUnderTheIterationBound)
         const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, o, d, std::numeric_limits<float>::max(), glm::vec2(0.0f));
         worst = std::max(worst, h.iterations);
         hits += h.hit;
-        ASSERT_LT(h.iterations, RK_SVO_TRAVERSE_MAX_ITER) << "ray " << i;
+        ASSERT_LT(h.iterations, uint(RK_SVO_TRAVERSE_MAX_ITER)) << "ray " << i;
     }
     std::printf("[trace] grazing rays over a depth-11 wall: max %u iterations (bound %u), %ld hits\n", worst,
-                RK_SVO_TRAVERSE_MAX_ITER, hits);
+                uint(RK_SVO_TRAVERSE_MAX_ITER), hits);
     EXPECT_GT(worst, 500u);  // they are the expensive case the bound must cover
 }
 
@@ -402,7 +402,7 @@ TEST(SvoTrace, NoNanForHostileInputs)
                         ASSERT_TRUE(std::isfinite(h.t) && std::isfinite(h.normal.x) && std::isfinite(h.normal.y) &&
                                     std::isfinite(h.normal.z))
                             << ox << " " << oy << " " << dx << " " << dy << " " << tm;
-                        ASSERT_LT(h.iterations, RK_SVO_TRAVERSE_MAX_ITER);
+                        ASSERT_LT(h.iterations, uint(RK_SVO_TRAVERSE_MAX_ITER));
                         if (tm < 0.0f) {
                             ASSERT_FALSE(h.hit);
                         }
@@ -429,6 +429,6 @@ TEST(SvoTrace, ShaderDefaultsMatchTheHeader)
     ss << f.rdbuf();
     const std::string src = ss.str();
     EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_LOD 0\n"), std::string::npos);
-    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_MAX_ITER 16384u\n"), std::string::npos);
-    static_assert(RK_SVO_TRAVERSE_LOD == 0 && RK_SVO_TRAVERSE_MAX_ITER == 16384u, "this translation unit uses the defaults");
+    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_MAX_ITER 16384\n"), std::string::npos);
+    static_assert(RK_SVO_TRAVERSE_LOD == 0 && RK_SVO_TRAVERSE_MAX_ITER == 16384, "this translation unit uses the defaults");
 }

@@ -33,9 +33,10 @@ enum class InteriorGlass {
     thesis_additive = 1,  ///< reflection + interior (the thesis's appendix; for comparison)
 };
 
-/// What an interior-mapped scene uses. Defaults: the thesis's material (four textures, no extras).
+/// What an interior-mapped scene uses. Defaults: the recommended room textures (a texture array)
+/// and no extras; thesis() is the thesis's material (four textures).
 struct InteriorSceneDesc {
-    InteriorTextures textures = InteriorTextures::four_textures;
+    InteriorTextures textures = InteriorTextures::texture_array;
     InteriorGlass glass = InteriorGlass::fresnel;
     bool room_lights = false;    ///< per-room on/off, colour and level (RK_IM_ROOM_LIGHTS)
     int furniture_layers = 0;    ///< furniture / character planes, 0..4 (RK_IM_FURNITURE_LAYERS)
@@ -49,6 +50,14 @@ struct InteriorSceneDesc {
     // Options of samples/common/interior_building.frag only (ignored by interior_shading.glsl):
     bool textured_facade = false;  ///< facade from a texture (alpha = window mask) instead of procedural
     bool tonemap_output = false;   ///< output tone-mapped sRGB (rk_tonemap) instead of linear HDR
+
+    /// The thesis's material: four room textures, no extras.
+    static InteriorSceneDesc thesis()
+    {
+        InteriorSceneDesc d;
+        d.textures = InteriorTextures::four_textures;
+        return d;
+    }
 };
 
 /// interior_defines: the macro set of a scene, in a fixed order:

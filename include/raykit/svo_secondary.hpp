@@ -20,7 +20,7 @@
 #define RK_SVO_SECONDARY_ABSORPTION 1
 #endif
 #ifndef RK_SVO_SECONDARY_MAX_STEPS
-#define RK_SVO_SECONDARY_MAX_STEPS 4096u
+#define RK_SVO_SECONDARY_MAX_STEPS 4096
 #endif
 
 #define RK_SVO_SECONDARY_NS_CAT_(f, a, s) svo_secondary_fast##f##_abs##a##_steps##s

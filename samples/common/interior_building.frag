@@ -6,7 +6,7 @@
 // defines from raykit::interior_defines(InteriorSceneDesc) (raykit/interior_features.hpp).
 //
 // FEATURE MACROS (host-settable; defaults in brackets; off = compiled out):
-//   RK_IM_SHADING [0]           room textures: 0 four textures (the thesis's), 1 array (RECOMMENDED:
+//   RK_IM_SHADING [1]           room textures: 0 four textures (the thesis's), 1 array (RECOMMENDED,
 //                               one fetch, no sampler branch), 2 padded atlas, 3 cube per room
 //   RK_IM_ROOM_LIGHTS [0]       per-room on/off, colour, level
 //   RK_IM_FURNITURE_LAYERS [0]  0..4 sprite planes

@@ -23,6 +23,16 @@
 #define RK_UNUSED(x)
 #endif
 
+// RK_OPTION_CHECK(constant, MACRO): next to each option macro's range check (an #error that lists
+// the valid values), makes a value that is not an integer a compile error too: the preprocessor
+// reads an unknown identifier such as `aces` in RK_TONEMAP_OPERATOR=aces as 0, a valid value, so the
+// macro is also used once as an integer expression, where the identifier is undeclared.
+#ifdef __cplusplus
+#define RK_OPTION_CHECK(constant, value) static_assert((value) == (value), #constant ": the option must be an integer")
+#else
+#define RK_OPTION_CHECK(constant, value) const uint constant = uint(value)
+#endif
+
 #define RK_PI 3.14159265358979323846f
 #define RK_HALF_PI 1.57079632679489661923f
 #define RK_INV_PI 0.31830988618379067154f

@@ -33,6 +33,10 @@
 #ifndef RK_FRESNEL_WINDOW_MODE
 #define RK_FRESNEL_WINDOW_MODE 2
 #endif
+#if RK_FRESNEL_WINDOW_MODE < 0 || RK_FRESNEL_WINDOW_MODE > 3
+#error "RK_FRESNEL_WINDOW_MODE must be 0 (single surface), 1 (thesis slab), 2 (per-polarisation slab) or 3 (N panes)"
+#endif
+RK_OPTION_CHECK(rk_option_fresnel_window_mode, RK_FRESNEL_WINDOW_MODE);
 
 #define RK_FRESNEL_ETA_MIN 0.000244140625f  // 1/4096
 #define RK_FRESNEL_ETA_MAX 4096.0f

@@ -38,18 +38,31 @@
 #ifndef RK_INTERIOR_COMPOSE_GLSL
 #define RK_INTERIOR_COMPOSE_GLSL
 
+#include "common.glsl"
 #include "interior_mapping.glsl"
 #include "window_glass.glsl"
 
 #ifndef RK_IM_COMPOSE_MODE
 #define RK_IM_COMPOSE_MODE 0
 #endif
+#if RK_IM_COMPOSE_MODE < 0 || RK_IM_COMPOSE_MODE > 1
+#error "RK_IM_COMPOSE_MODE must be 0 (Fresnel glass) or 1 (thesis additive)"
+#endif
+RK_OPTION_CHECK(rk_option_im_compose_mode, RK_IM_COMPOSE_MODE);
 #ifndef RK_IM_ROOM_LIGHTS
 #define RK_IM_ROOM_LIGHTS 0
 #endif
+#if RK_IM_ROOM_LIGHTS < 0 || RK_IM_ROOM_LIGHTS > 1
+#error "RK_IM_ROOM_LIGHTS must be 0 (off) or 1 (per-room lights)"
+#endif
+RK_OPTION_CHECK(rk_option_im_room_lights, RK_IM_ROOM_LIGHTS);
 #ifndef RK_IM_FADE
 #define RK_IM_FADE 0
 #endif
+#if RK_IM_FADE < 0 || RK_IM_FADE > 1
+#error "RK_IM_FADE must be 0 (off) or 1 (distance fade)"
+#endif
+RK_OPTION_CHECK(rk_option_im_fade, RK_IM_FADE);
 
 // Masks at or below this count as opaque facade (half a step of an 8-bit alpha channel).
 #define RK_IM_MASK_MIN 0.001953125f

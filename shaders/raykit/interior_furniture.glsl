@@ -43,17 +43,23 @@
 #ifndef RK_INTERIOR_FURNITURE_GLSL
 #define RK_INTERIOR_FURNITURE_GLSL
 
+#include "common.glsl"
 #include "interior_mapping.glsl"
 
 #ifndef RK_IM_FURNITURE_LAYERS
 #define RK_IM_FURNITURE_LAYERS 0
 #endif
 #if RK_IM_FURNITURE_LAYERS < 0 || RK_IM_FURNITURE_LAYERS > 4
-#error "RK_IM_FURNITURE_LAYERS must be in 0..4"
+#error "RK_IM_FURNITURE_LAYERS must be 0 (no furniture) or 1..4 (sprite planes)"
 #endif
+RK_OPTION_CHECK(rk_option_im_furniture_layers, RK_IM_FURNITURE_LAYERS);
 #ifndef RK_IM_FURNITURE_FLIPBOOK
 #define RK_IM_FURNITURE_FLIPBOOK 1
 #endif
+#if RK_IM_FURNITURE_FLIPBOOK < 0 || RK_IM_FURNITURE_FLIPBOOK > 1
+#error "RK_IM_FURNITURE_FLIPBOOK must be 0 (one image per sprite sheet) or 1 (flipbooks)"
+#endif
+RK_OPTION_CHECK(rk_option_im_furniture_flipbook, RK_IM_FURNITURE_FLIPBOOK);
 
 // Largest t - 1 of a reported hit: planes farther than 1e6 camera-to-surface distances are not hit.
 #define RK_IM_FURNITURE_Q_MAX 1.0e6f

@@ -94,6 +94,10 @@
 #ifndef RK_IM_VARYING_WALLS
 #define RK_IM_VARYING_WALLS 0
 #endif
+#if RK_IM_VARYING_WALLS < 0 || RK_IM_VARYING_WALLS > 1
+#error "RK_IM_VARYING_WALLS must be 0 (regular walls) or 1 (walls displaced per wall index)"
+#endif
+RK_OPTION_CHECK(rk_option_im_varying_walls, RK_IM_VARYING_WALLS);
 #ifndef RK_IM_NUDGE
 #define RK_IM_NUDGE 0.0009765625f
 #endif

@@ -14,7 +14,7 @@
 // caller passes dp_dx = dFdx(p), dp_dy = dFdy(p) computed in uniform control flow.
 //
 // Feature macros (each off value compiles the feature out entirely):
-//   RK_IM_SHADING  room textures (default 0, the thesis's; 1 is the RECOMMENDED mode):
+//   RK_IM_SHADING  room textures (default 1, the RECOMMENDED mode; 0 is the thesis's):
 //     0  four sampler2D: ceiling, floor, wall_x (walls of constant x, family 0, uv = (z, y)),
 //        wall_z (walls of constant z, family 2, uv = (x, y)); the thesis's variant, kept for
 //        compatibility. It branches over four samplers: one fetch per pixel on a GPU (the branch
@@ -55,11 +55,12 @@
 #include "interior_params.glsl"
 
 #ifndef RK_IM_SHADING
-#define RK_IM_SHADING 0
+#define RK_IM_SHADING 1
 #endif
 #if RK_IM_SHADING < 0 || RK_IM_SHADING > 3
-#error "RK_IM_SHADING must be 0, 1, 2 or 3"
+#error "RK_IM_SHADING must be 0 (four textures), 1 (texture array, recommended), 2 (padded atlas) or 3 (cube map per room)"
 #endif
+RK_OPTION_CHECK(rk_option_im_shading, RK_IM_SHADING);
 
 #if RK_IM_SHADING == 0
 /// rk_im_shade_four: the thesis's four textures, one textureGrad of the hit's family and side.

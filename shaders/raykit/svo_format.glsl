@@ -38,6 +38,10 @@
 #ifndef RK_SVO_BUFFER_TEXTURE
 #define RK_SVO_BUFFER_TEXTURE 0
 #endif
+#if RK_SVO_BUFFER_TEXTURE < 0 || RK_SVO_BUFFER_TEXTURE > 1
+#error "RK_SVO_BUFFER_TEXTURE must be 0 (SSBO) or 1 (R32UI texture)"
+#endif
+RK_OPTION_CHECK(rk_option_svo_buffer_texture, RK_SVO_BUFFER_TEXTURE);
 
 // Format constants (docs/svo-format.md).
 #define RK_SVO_VERSION 1u
@@ -54,9 +58,17 @@
 #ifndef RK_SVO_WORDS_BINDING
 #define RK_SVO_WORDS_BINDING 0
 #endif
-#ifndef RK_SVO_TEXTURE_WIDTH
-#define RK_SVO_TEXTURE_WIDTH 4096u
+#if RK_SVO_WORDS_BINDING < 0 || RK_SVO_WORDS_BINDING > 95
+#error "RK_SVO_WORDS_BINDING must be a binding in 0..95"
 #endif
+RK_OPTION_CHECK(rk_option_svo_words_binding, RK_SVO_WORDS_BINDING);
+#ifndef RK_SVO_TEXTURE_WIDTH
+#define RK_SVO_TEXTURE_WIDTH 4096
+#endif
+#if RK_SVO_TEXTURE_WIDTH < 1 || RK_SVO_TEXTURE_WIDTH > 65536
+#error "RK_SVO_TEXTURE_WIDTH must be in 1..65536 (texels per row)"
+#endif
+RK_OPTION_CHECK(rk_option_svo_texture_width, RK_SVO_TEXTURE_WIDTH);
 
 #ifdef __cplusplus
 #define RK_SVO_BUF const uint*
@@ -70,7 +82,7 @@ layout(binding = RK_SVO_WORDS_BINDING) uniform highp usampler2D rk_svo_words_tex
 #else
 layout(binding = RK_SVO_WORDS_BINDING) uniform usampler2D rk_svo_words_tex;
 #endif
-#define RK_SVO_LOAD(i) texelFetch(rk_svo_words_tex, ivec2(int((i) % RK_SVO_TEXTURE_WIDTH), int((i) / RK_SVO_TEXTURE_WIDTH)), 0).x
+#define RK_SVO_LOAD(i) texelFetch(rk_svo_words_tex, ivec2(int((i) % uint(RK_SVO_TEXTURE_WIDTH)), int((i) / uint(RK_SVO_TEXTURE_WIDTH))), 0).x
 #else
 layout(std430, binding = RK_SVO_WORDS_BINDING) readonly buffer RkSvoWords { uint rk_svo_words[]; };
 #define RK_SVO_LOAD(i) rk_svo_words[(i)]

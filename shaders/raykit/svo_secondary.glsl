@@ -30,9 +30,9 @@
 //   RK_SVO_SECONDARY_FRESNEL_FAST (default 0): 1 uses rk_fresnel_dielectric_fast (no sqrt, 1.7e-3 max error
 //       for glass) for external reflection; internal reflection stays exact.
 //   RK_SVO_SECONDARY_ABSORPTION (default 1): 0 drops the Beer–Lambert transmittance (no exp per voxel).
-//   RK_SVO_SECONDARY_MAX_STEPS (default 4096u): bound on the voxels one rk_svo_march crosses.
+//   RK_SVO_SECONDARY_MAX_STEPS (default 4096, a plain integer): bound on the voxels one rk_svo_march crosses.
 //
-// @rk-variants RK_SVO_SECONDARY_FRESNEL_FAST=1 | RK_SVO_SECONDARY_ABSORPTION=0 | RK_SVO_SECONDARY_FRESNEL_FAST=1 RK_SVO_SECONDARY_MAX_STEPS=64u
+// @rk-variants RK_SVO_SECONDARY_FRESNEL_FAST=1 | RK_SVO_SECONDARY_ABSORPTION=0 | RK_SVO_SECONDARY_FRESNEL_FAST=1 RK_SVO_SECONDARY_MAX_STEPS=64
 // @rk-es 310
 #ifndef RK_SVO_SECONDARY_GLSL
 #define RK_SVO_SECONDARY_GLSL
@@ -44,18 +44,38 @@
 #ifndef RK_SVO_SECONDARY_FRESNEL_FAST
 #define RK_SVO_SECONDARY_FRESNEL_FAST 0
 #endif
+#if RK_SVO_SECONDARY_FRESNEL_FAST < 0 || RK_SVO_SECONDARY_FRESNEL_FAST > 1
+#error "RK_SVO_SECONDARY_FRESNEL_FAST must be 0 (exact Fresnel) or 1 (fast Fresnel)"
+#endif
+RK_OPTION_CHECK(rk_option_svo_secondary_fresnel_fast, RK_SVO_SECONDARY_FRESNEL_FAST);
 #ifndef RK_SVO_SECONDARY_ABSORPTION
 #define RK_SVO_SECONDARY_ABSORPTION 1
 #endif
-#ifndef RK_SVO_SECONDARY_MAX_STEPS
-#define RK_SVO_SECONDARY_MAX_STEPS 4096u
+#if RK_SVO_SECONDARY_ABSORPTION < 0 || RK_SVO_SECONDARY_ABSORPTION > 1
+#error "RK_SVO_SECONDARY_ABSORPTION must be 0 (no absorption) or 1 (Beer-Lambert absorption)"
 #endif
+RK_OPTION_CHECK(rk_option_svo_secondary_absorption, RK_SVO_SECONDARY_ABSORPTION);
+#ifndef RK_SVO_SECONDARY_MAX_STEPS
+#define RK_SVO_SECONDARY_MAX_STEPS 4096
+#endif
+#if RK_SVO_SECONDARY_MAX_STEPS < 1 || RK_SVO_SECONDARY_MAX_STEPS > 16777216
+#error "RK_SVO_SECONDARY_MAX_STEPS must be in 1..2^24"
+#endif
+RK_OPTION_CHECK(rk_option_svo_secondary_max_steps, RK_SVO_SECONDARY_MAX_STEPS);
 #ifndef RK_SVO_MATERIAL_IDS_BINDING
 #define RK_SVO_MATERIAL_IDS_BINDING 6
 #endif
+#if RK_SVO_MATERIAL_IDS_BINDING < 0 || RK_SVO_MATERIAL_IDS_BINDING > 95
+#error "RK_SVO_MATERIAL_IDS_BINDING must be a binding in 0..95"
+#endif
+RK_OPTION_CHECK(rk_option_svo_material_ids_binding, RK_SVO_MATERIAL_IDS_BINDING);
 #ifndef RK_SVO_MEDIA_BINDING
 #define RK_SVO_MEDIA_BINDING 7
 #endif
+#if RK_SVO_MEDIA_BINDING < 0 || RK_SVO_MEDIA_BINDING > 95
+#error "RK_SVO_MEDIA_BINDING must be a binding in 0..95"
+#endif
+RK_OPTION_CHECK(rk_option_svo_media_binding, RK_SVO_MEDIA_BINDING);
 
 #ifdef __cplusplus
 /// C++: where a voxel's medium comes from (material id stream and media table). (The C++ build
@@ -234,7 +254,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
 #if RK_SVO_SECONDARY_HOOKED_NORMAL_
     cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
 #endif
-    for (uint it = 0u; it < RK_SVO_SECONDARY_MAX_STEPS; ++it) {
+    for (uint it = 0u; it < uint(RK_SVO_SECONDARY_MAX_STEPS); ++it) {
         // Distance (voxel units) to the cell's exit plane on each axis.
         vec3 lo = vec3(c);
         float tx = dir.x > 0.0f ? (lo.x + 1.0f - q.x) / dir.x : (dir.x < 0.0f ? (lo.x - q.x) / dir.x : RK_FLT_MAX);

@@ -25,14 +25,14 @@
 //   RK_SVO_TRAVERSE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
 //       the ray's footprint cone.x + cone.y * distance (object units; rk_svo_pixel_cone gives the
 //       cone of a pixel). 0 = the cone is ignored and costs nothing.
-//   RK_SVO_TRAVERSE_MAX_ITER (default 16384u): the hard bound on loop iterations. One iteration is one
+//   RK_SVO_TRAVERSE_MAX_ITER (default 16384, a plain integer): the hard bound on loop iterations. One iteration is one
 //       push, advance or pop. Primary rays take ~13 on average at depth 10; the costliest rays
 //       slide just above a flat surface (~4 per leaf cell crossed: 8,174 at depth 11, 16,382 at
 //       depth 13), so the default suffices up to depth 13; raise it for deeper trees seen at
 //       grazing angles. A ray that reaches the bound reports no hit with iterations equal to it.
 //       The value must be a plain literal (it is pasted into the C++ namespace name).
 //
-// @rk-variants RK_SVO_TRAVERSE_LOD=0 | RK_SVO_TRAVERSE_LOD=1 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRAVERSE_MAX_ITER=64u
+// @rk-variants RK_SVO_TRAVERSE_LOD=0 | RK_SVO_TRAVERSE_LOD=1 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRAVERSE_MAX_ITER=64
 // @rk-es 310
 #ifndef RK_SVO_TRAVERSE_GLSL
 #define RK_SVO_TRAVERSE_GLSL
@@ -43,9 +43,17 @@
 #ifndef RK_SVO_TRAVERSE_LOD
 #define RK_SVO_TRAVERSE_LOD 0
 #endif
-#ifndef RK_SVO_TRAVERSE_MAX_ITER
-#define RK_SVO_TRAVERSE_MAX_ITER 16384u
+#if RK_SVO_TRAVERSE_LOD < 0 || RK_SVO_TRAVERSE_LOD > 1
+#error "RK_SVO_TRAVERSE_LOD must be 0 (full detail) or 1 (level-of-detail stop)"
 #endif
+RK_OPTION_CHECK(rk_option_svo_traverse_lod, RK_SVO_TRAVERSE_LOD);
+#ifndef RK_SVO_TRAVERSE_MAX_ITER
+#define RK_SVO_TRAVERSE_MAX_ITER 16384
+#endif
+#if RK_SVO_TRAVERSE_MAX_ITER < 1 || RK_SVO_TRAVERSE_MAX_ITER > 16777216
+#error "RK_SVO_TRAVERSE_MAX_ITER must be in 1..2^24"
+#endif
+RK_OPTION_CHECK(rk_option_svo_traverse_max_iter, RK_SVO_TRAVERSE_MAX_ITER);
 
 // Stack entries: one per parent level 0 .. RK_SVO_MAX_DEPTH - 1.
 #define RK_SVO_TRAVERSE_STACK 20
@@ -244,7 +252,7 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
 
     uint iter = 0u;
     bool found = false;
-    for (; iter < RK_SVO_TRAVERSE_MAX_ITER; ++iter) {
+    for (; iter < uint(RK_SVO_TRAVERSE_MAX_ITER); ++iter) {
         uint lc = uint(23 - scale);  // level of the current cell
         vec3 tc = pos * coef - bias;  // exit planes of the current cell
         float tc_max = min(min(tc.x, tc.y), tc.z);

@@ -29,14 +29,23 @@
 #ifndef RK_TONEMAP_GLSL
 #define RK_TONEMAP_GLSL
 
+#include "common.glsl"
 #include "color.glsl"
 
 #ifndef RK_TONEMAP_OPERATOR
 #define RK_TONEMAP_OPERATOR 4
 #endif
+#if RK_TONEMAP_OPERATOR < 0 || RK_TONEMAP_OPERATOR > 8
+#error "RK_TONEMAP_OPERATOR must be 0 (clamp), 1 (Reinhard), 2 (ACES Narkowicz), 3 (ACES Hill), 4 (AgX), 5 (PBR Neutral), 6 (Hable), 7 (Lottes) or 8 (Uchimura)"
+#endif
+RK_OPTION_CHECK(rk_option_tonemap_operator, RK_TONEMAP_OPERATOR);
 #ifndef RK_AGX_LOOK
 #define RK_AGX_LOOK 0
 #endif
+#if RK_AGX_LOOK < 0 || RK_AGX_LOOK > 2
+#error "RK_AGX_LOOK must be 0 (default), 1 (golden) or 2 (punchy)"
+#endif
+RK_OPTION_CHECK(rk_option_agx_look, RK_AGX_LOOK);
 
 // ---------------------------------------------------------------------------------------------
 // Reinhard (thesis Eq. 3.15-3.17)

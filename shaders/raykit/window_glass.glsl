@@ -33,12 +33,17 @@
 #ifndef RK_WINDOW_GLASS_GLSL
 #define RK_WINDOW_GLASS_GLSL
 
+#include "common.glsl"
 #include "color.glsl"
 #include "fresnel.glsl"
 
 #ifndef RK_WINDOW_GLASS_FRESNEL
 #define RK_WINDOW_GLASS_FRESNEL 0
 #endif
+#if RK_WINDOW_GLASS_FRESNEL < 0 || RK_WINDOW_GLASS_FRESNEL > 1
+#error "RK_WINDOW_GLASS_FRESNEL must be 0 (single surface) or 1 (pane model of fresnel.glsl)"
+#endif
+RK_OPTION_CHECK(rk_option_window_glass_fresnel, RK_WINDOW_GLASS_FRESNEL);
 
 // Relative index of uncoated window glass (thesis §3.1.1, after Wloka).
 #define RK_WINDOW_GLASS_ETA 1.52f

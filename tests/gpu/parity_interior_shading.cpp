@@ -389,7 +389,7 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
         d.furniture_flipbook = mode < 2;
         variants.push_back(interior_defines(d));
     }
-    variants.push_back(interior_defines(InteriorSceneDesc{}));  // the benchmark's minimal variant
+    variants.push_back(interior_defines(InteriorSceneDesc::thesis()));  // the benchmark's minimal variant
 
     // Renders one variant; `extra` sets more uniforms. Returns false on a compile/link failure.
     struct Shot {
