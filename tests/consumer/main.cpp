@@ -33,6 +33,28 @@ int main(int argc, char** argv)
         std::printf("depfile %s does not list raykit's includes:\n%s\n", argv[2], dep.c_str());
         return 1;
     }
-    std::printf("consumer ok: SPIR-V for Vulkan and OpenGL, depfile lists raykit includes\n");
+    // raykit_compile_shaders with other DEFINES, FLAGS or a VARIANT: distinct files, distinct code.
+    if (argc < 7) return 2;
+    const std::string names[4] = {argv[1], argv[4], argv[5], argv[6]};
+    std::string code[4];
+    for (int i = 0; i < 4; ++i) {
+        if (!is_spirv(names[i].c_str())) {
+            std::printf("not SPIR-V: %s\n", names[i].c_str());
+            return 1;
+        }
+        std::ifstream f(names[i], std::ios::binary);
+        code[i].assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+        for (int j = 0; j < i; ++j) {
+            if (names[i] == names[j] || code[i] == code[j]) {
+                std::printf("variants %s and %s share a file or its code\n", names[j].c_str(), names[i].c_str());
+                return 1;
+            }
+        }
+    }
+    if (names[3].find("window.comp.mode2.spv") == std::string::npos) {
+        std::printf("VARIANT mode2 not in the output name: %s\n", names[3].c_str());
+        return 1;
+    }
+    std::printf("consumer ok: SPIR-V for Vulkan and OpenGL, depfile lists raykit includes, 4 distinct variants\n");
     return 0;
 }
