@@ -16,7 +16,7 @@ foreach(v SHADER_DIR INCLUDE_DIR WORK_DIR GLSLANG CXX LANG)
   endif()
 endforeach()
 # Not integer options: a float (no #if can test it) and a function-like hook.
-set(unchecked RK_IM_NUDGE RK_SVO_LOAD)
+set(unchecked RK_IM_NUDGE RK_IM_NUDGE_TAG RK_SVO_LOAD)
 
 file(GLOB files RELATIVE "${SHADER_DIR}/raykit" "${SHADER_DIR}/raykit/*.glsl")
 list(SORT files)

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cctype>
 #include <map>
+#include <set>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -405,4 +407,169 @@ TEST(Dialect, ReadmeListsEveryOptionMacro)
     }
     closedir(d);
     EXPECT_GE(n, 29);
+}
+
+namespace {
+// Blanks the parts of a shared file that only GLSL sees (`#ifndef __cplusplus` blocks and the
+// `#else` of `#ifdef __cplusplus`), keeping line structure.
+std::string cpp_view(const std::string& code)
+{
+    std::istringstream in(code);
+    std::string line, out;
+    std::vector<std::pair<int, bool>> stack;  // kind (0 other, 1 GLSL only, 2 C++ only), active
+    while (std::getline(in, line)) {
+        size_t i = line.find_first_not_of(" \t");
+        const std::string t = i == std::string::npos ? std::string() : line.substr(i);
+        if (t.rfind("#if", 0) == 0) {
+            const int kind = t.rfind("#ifndef __cplusplus", 0) == 0 ? 1 : (t.rfind("#ifdef __cplusplus", 0) == 0 ? 2 : 0);
+            stack.push_back({kind, kind != 1});
+            out += "\n";
+            continue;
+        }
+        if (t.rfind("#else", 0) == 0 && !stack.empty()) {
+            if (stack.back().first != 0) stack.back().second = !stack.back().second;
+            out += "\n";
+            continue;
+        }
+        if (t.rfind("#endif", 0) == 0 && !stack.empty()) {
+            stack.pop_back();
+            out += "\n";
+            continue;
+        }
+        bool active = true;
+        for (const auto& s : stack) active = active && s.second;
+        out += (active ? line : std::string()) + "\n";
+    }
+    return out;
+}
+}  // namespace
+
+// The one-definition rule by construction: every function of a file that C++ compiles whose body
+// depends on an option macro, directly or through a macro or function that does, sits between
+// RK_CONFIGURED_BEGIN and RK_CONFIGURED_END (an inline namespace named after the values in C++).
+// Files a header wraps whole in such a namespace (svo_traverse, svo_secondary) are exempt.
+TEST(Dialect, MacroDependentFunctionsAreConfigured)
+{
+    const std::string inc = std::string(RAYKIT_SAMPLES_DIR) + "/../include/raykit";
+    std::map<std::string, std::string> files;  // name -> text
+    DIR* d = opendir((kShaders + "/raykit").c_str());
+    ASSERT_NE(d, nullptr);
+    while (dirent* e = readdir(d)) {
+        const std::string n = e->d_name;
+        if (n.size() > 5 && n.compare(n.size() - 5, 5, ".glsl") == 0) {
+            ASSERT_TRUE(raykit::detail::read_text_file(kShaders + "/raykit/" + n, files[n]));
+        }
+    }
+    closedir(d);
+    // Which files C++ compiles (included by a header, or by such a file), and which are wrapped.
+    std::set<std::string> cpp, wrapped;
+    d = opendir(inc.c_str());
+    ASSERT_NE(d, nullptr);
+    const std::regex hpp_include(R"(#include "raykit/(\w+\.glsl)\")");
+    while (dirent* e = readdir(d)) {
+        const std::string n = e->d_name;
+        if (n.size() < 5 || n.compare(n.size() - 4, 4, ".hpp") != 0) continue;
+        std::string t;
+        ASSERT_TRUE(raykit::detail::read_text_file(inc + "/" + n, t));
+        for (std::sregex_iterator it(t.begin(), t.end(), hpp_include), end; it != end; ++it) {
+            cpp.insert((*it)[1]);
+            const std::string before = t.substr(0, static_cast<size_t>(it->position()));
+            const size_t prev = before.find_last_of('\n', before.size() >= 2 ? before.size() - 2 : 0);
+            if (before.find("inline namespace", prev == std::string::npos ? 0 : prev) != std::string::npos) wrapped.insert((*it)[1]);
+        }
+    }
+    closedir(d);
+    const std::regex glsl_include(R"(#include "(\w+\.glsl)\")");
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (const std::string& f : std::set<std::string>(cpp)) {
+            for (std::sregex_iterator it(files[f].begin(), files[f].end(), glsl_include), end; it != end; ++it) {
+                grew = cpp.insert((*it)[1]).second || grew;
+            }
+        }
+    }
+    EXPECT_TRUE(cpp.count("tonemap.glsl") && cpp.count("interior_mapping.glsl") && wrapped.count("svo_traverse.glsl"));
+    // Option macros, and macros defined from them.
+    std::set<std::string> macros;
+    const std::regex option(R"(#ifndef (RK_[A-Z0-9_]+)\n#define \1)");
+    const std::regex define(R"(#define (RK_[A-Z0-9_]+)[ (]([^\n]*))");
+    for (const auto& kv : files) {
+        for (std::sregex_iterator it(kv.second.begin(), kv.second.end(), option), end; it != end; ++it) {
+            const std::string m = (*it)[1];
+            if (m.size() < 5 || m.compare(m.size() - 5, 5, "_GLSL") != 0) macros.insert(m);
+        }
+    }
+    auto mentions = [](const std::string& text, const std::string& word) {
+        for (size_t p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) {
+            const bool l = p == 0 || !(std::isalnum(static_cast<unsigned char>(text[p - 1])) || text[p - 1] == '_');
+            const size_t q = p + word.size();
+            const bool r = q >= text.size() || !(std::isalnum(static_cast<unsigned char>(text[q])) || text[q] == '_');
+            if (l && r) return true;
+        }
+        return false;
+    };
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (const std::string& f : cpp) {
+            const std::string code = cpp_view(std::regex_replace(files[f], std::regex(R"(//[^\n]*)"), ""));
+            for (std::sregex_iterator it(code.begin(), code.end(), define), end; it != end; ++it) {
+                const std::string name = (*it)[1], body = (*it)[2];
+                if (macros.count(name) || name.rfind("RK_NS_", 0) == 0) continue;
+                for (const std::string& m : std::set<std::string>(macros)) {
+                    if (mentions(body, m)) grew = macros.insert(name).second || grew;
+                }
+            }
+        }
+    }
+    // Functions, their dependence, and whether each is configured.
+    struct Fn {
+        std::string file, body;
+        bool configured;
+        bool depends = false;
+    };
+    std::map<std::string, Fn> fns;
+    const std::regex fn(R"(RK_INLINE\s+\w+\s+(\w+)\s*\()");
+    for (const std::string& f : cpp) {
+        if (wrapped.count(f)) continue;
+        const std::string code = cpp_view(std::regex_replace(files[f], std::regex(R"(//[^\n]*)"), ""));
+        for (std::sregex_iterator it(code.begin(), code.end(), fn), end; it != end; ++it) {
+            const size_t at = static_cast<size_t>(it->position());
+            const size_t open = code.find('{', at), semi = code.find(';', at);
+            if (open == std::string::npos || semi < open) continue;  // a declaration
+            int depth = 0;
+            size_t close = open;
+            for (; close < code.size(); ++close) {
+                depth += code[close] == '{' ? 1 : (code[close] == '}' ? -1 : 0);
+                if (depth == 0) break;
+            }
+            const std::string pre = code.substr(0, at);
+            const size_t b = pre.rfind("RK_CONFIGURED_BEGIN"), e = pre.rfind("RK_CONFIGURED_END");
+            const bool configured = b != std::string::npos && (e == std::string::npos || e < b);
+            fns[(*it)[1]] = Fn{f, code.substr(at, close - at + 1), configured};
+        }
+    }
+    for (auto& kv : fns) {
+        for (const std::string& m : macros) kv.second.depends = kv.second.depends || mentions(kv.second.body, m);
+    }
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (auto& kv : fns) {
+            if (kv.second.depends) continue;
+            for (const auto& other : fns) {
+                if (other.second.depends && other.first != kv.first && mentions(kv.second.body, other.first)) {
+                    kv.second.depends = grew = true;
+                    break;
+                }
+            }
+        }
+    }
+    int configured = 0;
+    for (const auto& kv : fns) {
+        if (kv.second.depends) {
+            ++configured;
+            EXPECT_TRUE(kv.second.configured) << kv.second.file << ": " << kv.first
+                                              << " depends on an option macro but is outside RK_CONFIGURED_BEGIN/END";
+        }
+    }
+    EXPECT_GE(configured, 14);
 }

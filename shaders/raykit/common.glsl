@@ -23,6 +23,21 @@
 #define RK_UNUSED(x)
 #endif
 
+// RK_CONFIGURED_BEGIN(name) ... RK_CONFIGURED_END: brackets the functions whose body depends on
+// option macros. GLSL: nothing. C++: `inline namespace name { ... }`, with `name` built from the
+// macro values (RK_PP_CAT), so two translation units that include a header with different values
+// get differently mangled functions instead of one silently shared inline definition (the
+// one-definition rule). Types and macro-free functions stay outside: they are the same everywhere.
+#ifdef __cplusplus
+#define RK_PP_CAT2(a, b) a##b
+#define RK_PP_CAT(a, b) RK_PP_CAT2(a, b)
+#define RK_CONFIGURED_BEGIN(name) inline namespace name {
+#define RK_CONFIGURED_END }
+#else
+#define RK_CONFIGURED_BEGIN(name)
+#define RK_CONFIGURED_END
+#endif
+
 // RK_OPTION_CHECK(constant, MACRO): next to each option macro's range check (an #error that lists
 // the valid values), makes a value that is not an integer a compile error too: the preprocessor
 // reads an unknown identifier such as `aces` in RK_TONEMAP_OPERATOR=aces as 0, a valid value, so the

@@ -28,6 +28,10 @@
 #ifndef RK_FRESNEL_GLSL
 #define RK_FRESNEL_GLSL
 
+#ifdef __cplusplus
+#define RK_NS_FRESNEL_WINDOW RK_PP_CAT(fresnel_window_mode, RK_FRESNEL_WINDOW_MODE)
+#endif
+
 #include "common.glsl"
 
 #ifndef RK_FRESNEL_WINDOW_MODE
@@ -334,6 +338,10 @@ RK_INLINE float rk_fresnel_glazing_sp(vec2 rsp, float panes)
     return 0.5f * (rk_fresnel_glazing(rsp.x, panes) + rk_fresnel_glazing(rsp.y, panes));
 }
 
+// C++: the functions below depend on RK_FRESNEL_WINDOW_MODE; their C++ build lives in an
+// inline namespace named after the values (docs/dialect.md), so translation units with other
+// values never share it.
+RK_CONFIGURED_BEGIN(RK_NS_FRESNEL_WINDOW)
 /// rk_fresnel_window: window-glass reflectance selected at compile time by
 /// RK_FRESNEL_WINDOW_MODE (see the file header), so a shader pays only for the model it uses.
 /// `panes` is read by mode 3 only. Cost: that of rk_fresnel_dielectric_sp plus the slab.
@@ -352,5 +360,6 @@ RK_INLINE float rk_fresnel_window(float cos_i, float eta, float panes)
     return rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes);
 #endif
 }
+RK_CONFIGURED_END
 
 #endif  // RK_FRESNEL_GLSL

@@ -38,6 +38,11 @@
 #ifndef RK_INTERIOR_COMPOSE_GLSL
 #define RK_INTERIOR_COMPOSE_GLSL
 
+#ifdef __cplusplus
+#define RK_NS_IM_WINDOW RK_PP_CAT(RK_PP_CAT(RK_PP_CAT(im_window_compose, RK_IM_COMPOSE_MODE), RK_PP_CAT(_glass, RK_WINDOW_GLASS_FRESNEL)), \
+                                 RK_PP_CAT(_mode, RK_FRESNEL_WINDOW_MODE))
+#endif
+
 #include "common.glsl"
 #include "interior_mapping.glsl"
 #include "window_glass.glsl"
@@ -81,6 +86,10 @@ RK_INLINE bool rk_im_needs_interior(float mask) { return mask > RK_IM_MASK_MIN; 
 /// min(mask, 1). Exact. Cost: 1 compare, 1 min.
 RK_INLINE float rk_im_window_weight(float mask) { return rk_im_needs_interior(mask) ? min(mask, 1.0f) : 0.0f; }
 
+// C++: the functions below depend on RK_IM_COMPOSE_MODE, RK_WINDOW_GLASS_FRESNEL and
+// RK_FRESNEL_WINDOW_MODE; their C++ build lives in an inline namespace named after the values
+// (docs/dialect.md), so translation units with other values never share it.
+RK_CONFIGURED_BEGIN(RK_NS_IM_WINDOW)
 /// rk_im_window_fresnel: the pane over the interior: R reflection + (1 - R) tint interior with
 /// R = rk_window_glass_reflectance(cos_view, eta, panes) (macros of window_glass.glsl), inputs
 /// sanitised as in rk_window_glass_combine. cos_view = |N.V| (rk_window_glass_cos).
@@ -113,6 +122,7 @@ RK_INLINE vec3 rk_im_window(vec3 interior, vec3 reflection, float cos_view, vec3
     return rk_im_window_fresnel(interior, reflection, cos_view, tint, eta, panes);
 #endif
 }
+RK_CONFIGURED_END
 
 /// rk_im_compose: the facade texel: exterior (1 - w) + window w with w = rk_im_window_weight(mask).
 /// mask <= RK_IM_MASK_MIN gives exactly `exterior`, mask >= 1 exactly `window` (finite inputs).

@@ -88,6 +88,10 @@
 #ifndef RK_INTERIOR_MAPPING_GLSL
 #define RK_INTERIOR_MAPPING_GLSL
 
+#ifdef __cplusplus
+#define RK_NS_IM_TRACE RK_PP_CAT(RK_PP_CAT(im_trace_varying_walls, RK_IM_VARYING_WALLS), RK_PP_CAT(_nudge_, RK_IM_NUDGE_TAG))
+#endif
+
 #include "common.glsl"
 #include "hash.glsl"
 
@@ -98,6 +102,16 @@
 #error "RK_IM_VARYING_WALLS must be 0 (regular walls) or 1 (walls displaced per wall index)"
 #endif
 RK_OPTION_CHECK(rk_option_im_varying_walls, RK_IM_VARYING_WALLS);
+#ifdef __cplusplus
+// A float cannot name a namespace: the C++ build of the functions that read RK_IM_NUDGE is named
+// after RK_IM_NUDGE_TAG, which a non-default nudge must come with.
+#if defined(RK_IM_NUDGE) && !defined(RK_IM_NUDGE_TAG)
+#error "C++ build: a non-default RK_IM_NUDGE needs RK_IM_NUDGE_TAG, an identifier naming its value (e.g. 2em12), which names the C++ functions built with it"
+#endif
+#ifndef RK_IM_NUDGE_TAG
+#define RK_IM_NUDGE_TAG default_2em10
+#endif
+#endif
 #ifndef RK_IM_NUDGE
 #define RK_IM_NUDGE 0.0009765625f
 #endif
@@ -254,6 +268,10 @@ struct rk_im_detail_ray {
     bool valid;
 };
 
+// C++: the functions below depend on RK_IM_VARYING_WALLS and RK_IM_NUDGE (RK_IM_NUDGE_TAG); their C++ build lives in an
+// inline namespace named after the values (docs/dialect.md), so translation units with other
+// values never share it.
+RK_CONFIGURED_BEGIN(RK_NS_IM_TRACE)
 /// Common setup: clamps, grid coordinates, direction, validity, travel direction and the nudge.
 /// When invalid, up = 1 and q' = q, so that both axis rules return the documented default room
 /// (rk_im_room_at, rk_im_room_at_varying) with no extra work.
@@ -461,5 +479,6 @@ RK_INLINE rk_im_hit rk_im_trace_auto(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 
     return rk_im_trace_grad(p, cam, n, dp_dx, dp_dy, g);
 #endif
 }
+RK_CONFIGURED_END
 
 #endif  // RK_INTERIOR_MAPPING_GLSL

@@ -29,6 +29,10 @@
 #ifndef RK_TONEMAP_GLSL
 #define RK_TONEMAP_GLSL
 
+#ifdef __cplusplus
+#define RK_NS_TONEMAP RK_PP_CAT(RK_PP_CAT(tonemap_operator, RK_TONEMAP_OPERATOR), RK_PP_CAT(_agx_look, RK_AGX_LOOK))
+#endif
+
 #include "common.glsl"
 #include "color.glsl"
 
@@ -363,6 +367,10 @@ RK_INLINE vec3 rk_uchimura(vec3 rgb)
 
 // ---------------------------------------------------------------------------------------------
 
+// C++: the functions below depend on RK_TONEMAP_OPERATOR and RK_AGX_LOOK; their C++ build lives in an
+// inline namespace named after the values (docs/dialect.md), so translation units with other
+// values never share it.
+RK_CONFIGURED_BEGIN(RK_NS_TONEMAP)
 /// rk_tonemap: the operator chosen by RK_TONEMAP_OPERATOR at compile time (a shader pays only for
 /// it). `reinhard_white` is read by operator 1 only (RK_HDR_MAX for the simple operator).
 /// Output display-linear in [0, 1]. Domain, max error and cost: exactly those of the selected
@@ -393,5 +401,6 @@ RK_INLINE vec3 rk_tonemap(vec3 rgb, float reinhard_white)
     return rk_uchimura(rgb);
 #endif
 }
+RK_CONFIGURED_END
 
 #endif  // RK_TONEMAP_GLSL

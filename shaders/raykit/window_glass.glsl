@@ -33,6 +33,10 @@
 #ifndef RK_WINDOW_GLASS_GLSL
 #define RK_WINDOW_GLASS_GLSL
 
+#ifdef __cplusplus
+#define RK_NS_WINDOW_GLASS RK_PP_CAT(RK_PP_CAT(window_glass_fresnel, RK_WINDOW_GLASS_FRESNEL), RK_PP_CAT(_mode, RK_FRESNEL_WINDOW_MODE))
+#endif
+
 #include "common.glsl"
 #include "color.glsl"
 #include "fresnel.glsl"
@@ -84,6 +88,10 @@ RK_INLINE float rk_window_glass_reflectance_fast(float cos_i, vec3 params, float
     return rk_fresnel_glazing(rk_fresnel_dielectric_fast(cos_i, params), panes);
 }
 
+// C++: the functions below depend on RK_WINDOW_GLASS_FRESNEL and RK_FRESNEL_WINDOW_MODE; their C++ build lives in an
+// inline namespace named after the values (docs/dialect.md), so translation units with other
+// values never share it.
+RK_CONFIGURED_BEGIN(RK_NS_WINDOW_GLASS)
 /// rk_window_glass_reflectance: the reflectance selected by RK_WINDOW_GLASS_FRESNEL (see the
 /// file header). `panes` is read by the fast mode and by fresnel.glsl's RK_FRESNEL_WINDOW_MODE 3.
 /// The fast mode builds its params inline (one sqrt, folded when eta is a constant).
@@ -139,6 +147,7 @@ RK_INLINE vec3 rk_window_glass_shade(vec3 normal, vec3 to_eye, vec3 reflection, 
     float c = rk_window_glass_cos(normal, to_eye);
     return rk_window_glass_combine(reflection, interior, rk_window_glass_reflectance(c, eta, panes), tint);
 }
+RK_CONFIGURED_END
 
 /// rk_window_glass_slab_absorbing: reflectance and transmittance of one absorbing pane per RGB
 /// channel, incoherent multiple reflections summed exactly: with the single-surface reflectance R
