@@ -9,6 +9,7 @@ PKGS=(
   build-essential cmake pkg-config
   libglm-dev                                  # the only dependency of the raykit::raykit target
   glslang-tools glslang-dev spirv-tools       # shader validation + raykit_compile_shaders
+  spirv-cross                                 # tests: GLSL -> HLSL / MSL through SPIRV-Cross
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0   # headless OpenGL 4.5 (llvmpipe)
   mesa-vulkan-drivers libvulkan-dev           # lavapipe, for users' Vulkan SPIR-V smoke runs
   libglfw3-dev                                # windowed samples (optional at build time)

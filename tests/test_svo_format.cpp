@@ -23,6 +23,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <random>
 #include <vector>
 
 #include "raykit/svo_build.hpp"
@@ -1137,3 +1138,20 @@ TEST(SvoBuildOptionsTest, CustomParallelForGivesTheSameTreeAsThePool)
 }
 
 }  // namespace
+
+// The portable bitCount / findMSB of common.glsl (GLSL ES 3.00 has no built-ins) against glm's,
+// over every single-bit and all-ones-below pattern, their neighbours, and 2^22 random words.
+TEST(CommonGlsl, PortableBitCountAndFindMsbMatchTheBuiltins)
+{
+    std::vector<uint32_t> v = {0u, 1u, 2u, 3u, 0xFFFFFFFFu, 0x80000000u, 0x7FFFFFFFu, 0x55555555u, 0xAAAAAAAAu};
+    for (int b = 0; b < 32; ++b) {
+        const uint32_t p = 1u << b;
+        for (uint32_t x : {p, p - 1u, p + 1u, ~p, p | (p >> 1)}) v.push_back(x);
+    }
+    std::mt19937 rng(11);
+    for (int i = 0; i < (1 << 22); ++i) v.push_back(static_cast<uint32_t>(rng()));
+    for (uint32_t x : v) {
+        ASSERT_EQ(raykit::rk_bit_count_portable(x), glm::bitCount(x)) << x;
+        ASSERT_EQ(raykit::rk_find_msb_portable(x), glm::findMSB(x)) << x;
+    }
+}

@@ -2,6 +2,8 @@
 #   - OpenGL 4.50 -> SPIR-V (-G), then spirv-val --target-env opengl4.5
 #   - Vulkan 1.2  -> SPIR-V (-V), then spirv-val --target-env vulkan1.2
 #   - GLSL ES 3.10 (front end only) when the file declares `// @rk-es 310`
+#   - GLSL ES 3.00 / WebGL 2 (front end only, fragment stage, precision highp float and int) when
+#     it declares `// @rk-es300 [NAME=VALUE...]`, with those macros (e.g. RK_SVO_BUFFER_TEXTURE=1)
 # once per stage (comp, frag) and per feature-macro variant declared in the file as
 #   // @rk-variants A=0 | A=1 B=2 | ...
 # (each `|`-separated group is one variant; the default, no macro, is always compiled too),
@@ -59,6 +61,22 @@ foreach(rel IN LISTS files)
   set(es OFF)
   if(src MATCHES "@rk-es 310")
     set(es ON)
+  endif()
+  if(src MATCHES "@rk-es300([^\n]*)")
+    string(STRIP "${CMAKE_MATCH_1}" es300_words)
+    set(es300_defs "")
+    if(es300_words)
+      string(REPLACE " " ";" es300_words "${es300_words}")
+      foreach(w IN LISTS es300_words)
+        string(REPLACE "=" " " w "${w}")
+        string(APPEND es300_defs "#define ${w}\n")
+      endforeach()
+    endif()
+    set(base "${WORK_DIR}/${id}_es300")
+    file(WRITE "${base}.frag" "#version 300 es\n#extension GL_GOOGLE_include_directive : require\n"
+      "precision highp float;\nprecision highp int;\n${es300_defs}#include \"${rel}\"\n#include \"${rel}\"\n"
+      "out vec4 rk_color;\nvoid main() { rk_color = vec4(0.0); }\n")
+    run_checked("${rel} GLSL ES 3.00 frag" "${GLSLANG}" -l "-I${SHADER_DIR}" "${base}.frag")
   endif()
   if(NOT src MATCHES "#ifndef RK_[A-Z0-9_]+_GLSL")
     message("FAIL ${rel}: no `#ifndef RK_<NAME>_GLSL` include guard")

@@ -26,6 +26,7 @@
 // scale that ulp by the knee's slope 1/K.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_BLOOM_GLSL
 #define RK_BLOOM_GLSL
 

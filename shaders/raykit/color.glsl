@@ -4,6 +4,7 @@
 // Working space: linear Rec.709/sRGB primaries, D65, scene-referred (1.0 = diffuse white).
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_COLOR_GLSL
 #define RK_COLOR_GLSL
 

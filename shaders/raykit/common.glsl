@@ -8,6 +8,7 @@
 // and `u`-suffixed literals, no implicit int->float conversion.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_COMMON_GLSL
 #define RK_COMMON_GLSL
 
@@ -22,6 +23,7 @@
 #define RK_INOUT(T) inout T
 #define RK_UNUSED(x)
 #endif
+
 
 // RK_CONFIGURED_BEGIN(name) ... RK_CONFIGURED_END: brackets the functions whose body depends on
 // option macros. GLSL: nothing. C++: `inline namespace name { ... }`, with `name` built from the
@@ -79,5 +81,43 @@ RK_INLINE float rk_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
 /// rk_safe_rcp_pos: 1/x for x expected >= 0, with x floored at RK_FLT_MIN so zero and
 /// denormals give a large finite value instead of inf. Cost: 1 max + 1 div.
 RK_INLINE float rk_safe_rcp_pos(float x) { return 1.0f / max(x, RK_FLT_MIN); }
+
+/// rk_bit_count_portable / rk_find_msb_portable: bitCount and findMSB of a uint without the
+/// built-ins (GLSL ES 3.00 / WebGL 2 lacks them; there, these replace the built-ins, see below).
+/// Exact: the built-ins' results for every uint (-1 for findMSB(0)). Cost: ~12 and ~10 integer ops.
+RK_INLINE int rk_bit_count_portable(uint v)
+{
+    v = v - ((v >> 1u) & 0x55555555u);
+    v = (v & 0x33333333u) + ((v >> 2u) & 0x33333333u);
+    return int((((v + (v >> 4u)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24u);
+}
+RK_INLINE int rk_find_msb_portable(uint v)
+{
+    if (v == 0u) return -1;
+    int n = 0;
+    if (v >= 0x10000u) {
+        n += 16;
+        v >>= 16u;
+    }
+    if (v >= 0x100u) {
+        n += 8;
+        v >>= 8u;
+    }
+    if (v >= 0x10u) {
+        n += 4;
+        v >>= 4u;
+    }
+    if (v >= 0x4u) {
+        n += 2;
+        v >>= 2u;
+    }
+    return n + (v >= 0x2u ? 1 : 0);
+}
+#if !defined(__cplusplus) && defined(GL_ES)
+#if __VERSION__ < 310
+#define bitCount rk_bit_count_portable
+#define findMSB rk_find_msb_portable
+#endif
+#endif
 
 #endif  // RK_COMMON_GLSL

@@ -25,6 +25,7 @@
 // grazing reflections (N·R = 0), zero vectors, denormals and ±0.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_ENVMAP_CORRECTION_GLSL
 #define RK_ENVMAP_CORRECTION_GLSL
 

@@ -28,6 +28,7 @@
 // (GPU vs this file's C++ build on Mesa llvmpipe).
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_EXPOSURE_GLSL
 #define RK_EXPOSURE_GLSL
 

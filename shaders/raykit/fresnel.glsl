@@ -24,6 +24,7 @@
 //                           (physically right order);  3 N panes per polarisation.
 //
 // @rk-es 310
+// @rk-es300
 // @rk-variants RK_FRESNEL_WINDOW_MODE=0 | RK_FRESNEL_WINDOW_MODE=1 | RK_FRESNEL_WINDOW_MODE=2 | RK_FRESNEL_WINDOW_MODE=3
 #ifndef RK_FRESNEL_GLSL
 #define RK_FRESNEL_GLSL

@@ -14,6 +14,7 @@
 // No feature macros.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_HASH_GLSL
 #define RK_HASH_GLSL
 

@@ -34,6 +34,7 @@
 // The functions below exist whatever the macros; a function nobody calls costs nothing.
 //
 // @rk-es 310
+// @rk-es300
 // @rk-variants RK_IM_COMPOSE_MODE=0 | RK_IM_COMPOSE_MODE=1 | RK_IM_ROOM_LIGHTS=1 RK_IM_FADE=1 | RK_WINDOW_GLASS_FRESNEL=1 RK_IM_COMPOSE_MODE=0
 #ifndef RK_INTERIOR_COMPOSE_GLSL
 #define RK_INTERIOR_COMPOSE_GLSL

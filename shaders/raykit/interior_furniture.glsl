@@ -39,6 +39,7 @@
 //                           InteriorSceneDesc::furniture_flipbook.
 //
 // @rk-es 310
+// @rk-es300
 // @rk-variants RK_IM_FURNITURE_LAYERS=0 | RK_IM_FURNITURE_LAYERS=1 | RK_IM_FURNITURE_LAYERS=4 | RK_IM_FURNITURE_LAYERS=2 RK_IM_FURNITURE_FLIPBOOK=0
 #ifndef RK_INTERIOR_FURNITURE_GLSL
 #define RK_INTERIOR_FURNITURE_GLSL

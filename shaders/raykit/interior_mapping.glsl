@@ -84,6 +84,7 @@
 // reciprocal 3, the direction reciprocal per axis 3, normal scale 1), was 32.
 //
 // @rk-es 310
+// @rk-es300
 // @rk-variants RK_IM_VARYING_WALLS=0 | RK_IM_VARYING_WALLS=1 | RK_IM_VARYING_WALLS=1 RK_IM_NUDGE=0.001f
 #ifndef RK_INTERIOR_MAPPING_GLSL
 #define RK_INTERIOR_MAPPING_GLSL

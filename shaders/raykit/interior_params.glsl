@@ -5,6 +5,7 @@
 // (tests/test_gpu_layout.cpp), for engines that upload it as a block rather than as loose uniforms.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_INTERIOR_PARAMS_GLSL
 #define RK_INTERIOR_PARAMS_GLSL
 

@@ -13,6 +13,7 @@
 // their ranges and the atlas LOD clamp guards its division.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_INTERIOR_SURFACE_GLSL
 #define RK_INTERIOR_SURFACE_GLSL
 

@@ -46,6 +46,7 @@
 // Errors are against float64 evaluations, measured by tests/test_paraboloid.cpp.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_PARABOLOID_GLSL
 #define RK_PARABOLOID_GLSL
 

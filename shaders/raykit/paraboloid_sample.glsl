@@ -17,6 +17,7 @@
 //
 // @rk-stages frag
 // @rk-es 310
+// @rk-es300
 #ifndef RK_PARABOLOID_SAMPLE_GLSL
 #define RK_PARABOLOID_SAMPLE_GLSL
 

@@ -29,6 +29,7 @@
 //
 // @rk-variants RK_SVO_BUFFER_TEXTURE=0 | RK_SVO_BUFFER_TEXTURE=1
 // @rk-es 310
+// @rk-es300 RK_SVO_BUFFER_TEXTURE=1
 #ifndef RK_SVO_FORMAT_GLSL
 #define RK_SVO_FORMAT_GLSL
 
@@ -77,7 +78,10 @@ RK_OPTION_CHECK(rk_option_svo_texture_width, RK_SVO_TEXTURE_WIDTH);
 #define RK_SVO_BUF uint
 #ifndef RK_SVO_LOAD
 #if RK_SVO_BUFFER_TEXTURE
-#ifdef GL_ES
+#if defined(GL_ES) && __VERSION__ < 310
+// GLSL ES 3.00 / WebGL 2 have no binding qualifier: set the texture unit with glUniform1i.
+uniform highp usampler2D rk_svo_words_tex;
+#elif defined(GL_ES)
 layout(binding = RK_SVO_WORDS_BINDING) uniform highp usampler2D rk_svo_words_tex;
 #else
 layout(binding = RK_SVO_WORDS_BINDING) uniform usampler2D rk_svo_words_tex;

@@ -22,6 +22,7 @@
 // t_max, so the traversal never descends into anything behind it.
 //
 // @rk-es 310
+// @rk-es300
 #ifndef RK_SVO_HYBRID_GLSL
 #define RK_SVO_HYBRID_GLSL
 

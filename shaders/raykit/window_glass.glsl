@@ -29,6 +29,7 @@
 //         Fresnel's own error), 0.062 for two panes (tests/test_envmap_correction.cpp prints them).
 //
 // @rk-es 310
+// @rk-es300
 // @rk-variants RK_WINDOW_GLASS_FRESNEL=0 | RK_WINDOW_GLASS_FRESNEL=1 | RK_WINDOW_GLASS_FRESNEL=0 RK_FRESNEL_WINDOW_MODE=3 | RK_WINDOW_GLASS_FRESNEL=1 RK_FRESNEL_WINDOW_MODE=1
 #ifndef RK_WINDOW_GLASS_GLSL
 #define RK_WINDOW_GLASS_GLSL

@@ -186,3 +186,19 @@ TEST(GpuParity, SvoLookupOnPackedTrees)
         }
     }
 }
+
+// The portable bitCount / findMSB that replace the built-ins under GLSL ES 3.00 (common.glsl):
+// on the driver, against the driver's own built-ins, over the bit patterns of random and
+// adversarial floats (every sign, exponent and denormal pattern class), and both builds agree.
+TEST(GpuParity, PortableBitCountAndFindMsb)
+{
+    const parity::Domain any{-1e30f, 1e30f, false, {0.0f, -0.0f, 1.0f, -1.0f, 1e-45f, -1e-45f, 3.4028235e38f}};
+    const parity::Case c = RK_PARITY("rk_bit_count_portable / rk_find_msb_portable", "raykit/common.glsl", (any), 4,
+                                     o[0] = float(rk_bit_count_portable(floatBitsToUint(a[0])));
+                                     o[1] = float(bitCount(floatBitsToUint(a[0])));
+                                     o[2] = float(rk_find_msb_portable(floatBitsToUint(a[0])));
+                                     o[3] = float(findMSB(floatBitsToUint(a[0]))););
+    const parity::Result r = parity::run(c, parity::shader_dir(), 8192);
+    EXPECT_TRUE(r.ok) << r.mismatches << " mismatches, worst " << r.worst;
+    EXPECT_EQ(r.non_finite, 0);
+}
