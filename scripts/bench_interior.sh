@@ -118,7 +118,8 @@ fi
 cat <<'DOC'
 ## Scene and method
 
-The thesis's z-cull test scene (van Dongen 2009, §5.3; notes `seed000.md` §4.1-4.2): one mesh
+The thesis's z-cull test scene (van Dongen, *Using raycasting in GPU shaders to enhance real-time
+graphics*, Master's thesis, Utrecht University, 2009, §5.3): one mesh
 holding an 8 x 8 grid of box buildings, each the thesis's test building (6 x 6 windows, 31 floors:
 24 x 93 x 24 units, rooms of 4 x 3 x 4, 1,116 rooms per building), 16-unit streets, one draw call
 per pass. The camera flies down a street at 28-52 units of height, turning a full circle and
@@ -135,7 +136,7 @@ Materials (all with trilinear-filtered, mipmapped RGBA8 textures; interior textu
 - **thesis**: the thesis appendix shader ported to GLSL 4.50 (`bench/gl/thesis_im.frag`, written
   from the structural description): floor+step planes, vectorised ray fractions, the four interior
   textures sampled unconditionally, step/mix selection, cube reflection *added* to the interior, mix
-  by the facade alpha. Like the original it shows the facade-on-a-grid-plane flicker (notes §2.10.2)
+  by the facade alpha. Like the original it shows the facade-on-a-grid-plane flicker (a bug of that shader)
   in some windows, since the facades lie on room planes.
 - **rk_min / rk_full** and the `rk_*` attribution variants: raykit's building material
   `samples/common/interior_building.{vert,frag}` (on `interior_shading.glsl`, i.e. the
@@ -335,7 +336,7 @@ cat <<'DOC'
 
 ## The thesis's numbers, for comparison
 
-GeForce 6600 GT, 1024 x 768, frames rendered in 5 s (notes §4.2): plain material (diffuse + window
+GeForce 6600 GT, 1024 x 768, frames rendered in 5 s (van Dongen 2009, §5.3): plain material (diffuse + window
 reflection) **5,100 frames**, the same + interior mapping with four textures **999 frames**, i.e.
 interior mapping cost **≈ 5.1x** the plain material; a depth pre-pass on the grid-of-buildings
 scene: **881 → 1,265 frames (+44 %)**; 1,000 → 4,000,000 rooms per building: **no change**;

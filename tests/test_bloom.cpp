@@ -1,5 +1,6 @@
 // CPU tests of raykit/bloom.hpp (the C++ build of shaders/raykit/bloom.glsl plus the CPU-only
-// helpers) against the published values of shared/reference/notes/seed002.md §2.7 / §8.6 and
+// helpers) against values that follow from the bloom of Fahlén, "Illumination for Real-Time
+// Rendering of Large Architectural Environments" (2005), §3.4 (sigma = 3, 4 levels from 1/8), and
 // float64 re-implementations of every shared function. The numbers printed here are the "max error
 // vs float64" quoted in bloom.glsl.
 #include <gtest/gtest.h>
@@ -68,7 +69,7 @@ float bilinear1(const std::vector<float>& s, double x)  // x in texel units, tex
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// Gaussian weights and merged linear taps (seed002.md §2.7).
+// Gaussian weights and merged linear taps (Fahlén 2005 §3.4.2: sigma = 3; radius 9 = 3 sigma is ours).
 
 TEST(BloomWeights, PublishedSigma3Radius9)
 {
@@ -190,6 +191,38 @@ TEST(BloomWeights, LinearTapsReproduceDiscreteConvolution)
 
 // ---------------------------------------------------------------------------------------------
 // Chain sizes.
+
+// Texel coordinates and composites under adversarial inputs: NaN / infinite / huge coordinates and
+// sizes give coordinates inside the source and weights in [0, 1]; the mix composite stays at or
+// below RK_HDR_MAX when both colours sit at it.
+TEST(BloomHelpers, AdversarialCoordinatesAndCompositeRange)
+{
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float specials[] = {nan, inf, -inf, 0.0f, -0.0f, 1e-40f, 0.5f, 1.0f, 3.0f, 4096.0f, 1e7f, 1e30f, -1e30f};
+    for (float f : specials) {
+        for (float d : specials) {
+            for (float s : specials) {
+                const float t = rk_bloom_source_texel(f, d, s);
+                const float src = s > 1.0f ? std::min(s, 65536.0f) : 1.0f;
+                ASSERT_TRUE(t >= -0.5f && t <= src - 0.5f) << f << " " << d << " " << s << " -> " << t;
+            }
+        }
+        for (float g : specials) {
+            const vec4 w = rk_bloom_bilinear_weights(vec2(f, g));
+            for (int k = 0; k < 4; ++k) ASSERT_TRUE(w[k] >= 0.0f && w[k] <= 1.0f) << f << " " << g;
+            ASSERT_NEAR(w.x + w.y + w.z + w.w, 1.0f, 1e-6f) << f << " " << g;
+        }
+    }
+    std::mt19937 rng(3);
+    for (int i = 0; i < 100000; ++i) {
+        const float s = std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
+        const vec3 top(RK_HDR_MAX), near_top(std::nextafter(RK_HDR_MAX, 0.0f));
+        for (const vec3 c : {rk_bloom_composite_mix(top, top, s), rk_bloom_composite_mix(top, near_top, s),
+                             rk_bloom_composite_add(top, top, s)}) {
+            ASSERT_TRUE(c.x <= RK_HDR_MAX && c.x >= 0.0f) << s << " -> " << c.x;
+        }
+    }
+}
 
 TEST(BloomChain, ThesisSizes)
 {

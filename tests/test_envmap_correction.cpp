@@ -1,6 +1,7 @@
 // CPU tests of raykit/envmap_correction.hpp and raykit/window_glass.hpp (the C++ builds of
-// shaders/raykit/envmap_correction.glsl and window_glass.glsl) against float64 geometry and the
-// values of shared/reference/notes/seed002.md §3.2, §3.8 and §8.3.
+// shaders/raykit/envmap_correction.glsl and window_glass.glsl) against float64 geometry and values
+// from Fahlén, "Illumination for Real-Time Rendering of Large Architectural Environments" (2005),
+// §3.1.2 and §3.2.4.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,7 +59,7 @@ bool finite3(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::i
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// The thesis's sigmoid (§3.2.4; x = angle in radians, seed002.md erratum 6)
+// The thesis's sigmoid (§3.2.4; x = angle in radians: the thesis leaves x unstated)
 
 TEST(EnvmapCorrection, SigmoidPublishedValues)
 {
@@ -93,7 +94,7 @@ TEST(EnvmapCorrection, SigmoidPublishedValues)
 namespace {
 
 /// Float64 reference of the thesis's street-plane correction, written here from Fahlén 2005
-/// §3.2.4 and seed002.md §3.8 (erratum 6: x is the angle between N and R in radians), not from
+/// §3.2.4 (x, unstated there, read as the angle between N and R in radians), not from
 /// envmap_correction.glsl:
 ///   R' = R + CP sigma(x) / d,   x = acos(N.R),   sigma(x) = 1 / (1 + e^(-a (x - k))),
 /// thesis constants a = -4.7, k = 0.9, d = 8 m. N.R is clamped to [-1, 1] (acos's domain) and
@@ -431,7 +432,7 @@ TEST(EnvmapCorrection, GrazingAndAdversarialInputsStayFinite)
 
 TEST(WindowGlass, ReflectanceModels)
 {
-    // One pane, n = 1.52, per-polarisation slab (seed002.md §3.2 table).
+    // One pane, n = 1.52, per-polarisation slab (Fahlén 2005 Eq. 3.8 applied per polarisation).
     EXPECT_NEAR(rk_window_glass_reflectance_exact(1.0f, 1.52f, 1.0f), 0.0816820, 2e-7);
     EXPECT_NEAR(rk_window_glass_reflectance_exact(std::cos(60.0f * 3.14159265f / 180.0f), 1.52f, 1.0f), 0.15653, 1e-5);
     EXPECT_NEAR(rk_window_glass_reflectance_exact(std::cos(85.0f * 3.14159265f / 180.0f), 1.52f, 1.0f), 0.75435, 1e-5);
@@ -489,7 +490,7 @@ TEST(WindowGlass, CombineAndShade)
 namespace {
 /// Float64 pane reflectance, per polarisation (the default build's model, RK_FRESNEL_WINDOW_MODE 2):
 /// the complex-amplitude Fresnel of reference/fresnel_ref.hpp, then the slab 2R / (1 + R) of each
-/// polarisation (thesis Eq. 3.8, seed002.md erratum 5), averaged.
+/// polarisation (thesis Eq. 3.8, which the thesis applies to the average instead), averaged.
 double pane_ref(double c, double eta)
 {
     const auto sp = ref::fresnel_sp(c, ref::cd(eta, 0.0));

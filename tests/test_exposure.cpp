@@ -1,7 +1,8 @@
 // CPU tests of raykit/exposure.hpp (the C++ build of shaders/raykit/exposure.glsl and the CPU
-// references of the luminance reduction) against float64 formulas written out here, the test
-// vectors of shared/reference/notes/seed002.md §2.6 and §8.5, and the properties the issue asks
-// for: frame-rate-independent adaptation, no NaN/Inf for any input (NaN and +-Inf included).
+// references of the luminance reduction) against float64 formulas written out here, test vectors
+// of Eq. 3.18-3.19 of Fahlén, "Illumination for Real-Time Rendering of Large Architectural
+// Environments" (2005), §3.3.1, and the properties the issue asks for: frame-rate-independent
+// adaptation, no NaN/Inf for any input (NaN and +-Inf included).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,7 +58,7 @@ float log_uniform(std::mt19937& rng, double lo, double hi)
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// Published test vectors (seed002.md §2.6) and the EV100 definitions.
+// Test vectors of Fahlén 2005 Eq. 3.18-3.19 (Reinhard's exponents) and the EV100 definitions.
 
 TEST(Exposure, ReinhardAutoParamsTestVectors)
 {

@@ -1,6 +1,6 @@
 // CPU tests of raykit/fresnel.hpp (the C++ build of shaders/raykit/fresnel.glsl) against the
-// float64 references of tests/reference/fresnel_ref.hpp and the published values of
-// shared/reference/notes/seed002.md §3.2 / §8.1.
+// float64 references of tests/reference/fresnel_ref.hpp and values worked out from the formulas of
+// Fahlén, "Illumination for Real-Time Rendering of Large Architectural Environments" (2005), §3.1.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +27,7 @@ float cosd(double deg) { return static_cast<float>(std::cos(deg * kDeg)); }
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// Published numbers (seed002.md §3.2 table for n = 1.52, §8.1 unit-test values).
+// Reference numbers for n = 1.52 (the formulas of Fahlén 2005 §3.1.1-3.1.2 and their extensions).
 
 TEST(Fresnel, PublishedScalars)
 {

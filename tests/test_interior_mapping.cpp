@@ -311,7 +311,7 @@ TEST(InteriorMapping, ThesisPrevNextRuleIsWrongTwoCandidateRuleIsExact)
     long thesis_wrong = 0, lib_wrong = 0;
     for (int i = 0; i < N; ++i) {
         const u32 seed = static_cast<u32>(rng());
-        const float jitter = 1.0f;  // delta uniform in [0, 1): one wall per cell, the notes' setting
+        const float jitter = 1.0f;  // delta uniform in [0, 1): one wall per cell
         const float g = static_cast<float>(-50.0 + 100.0 * U(rng));
         const float s = U(rng) < 0.5 ? -1.0f : 1.0f;
         auto wall = [&](long k) { return dd(static_cast<float>(k)) + dd(rk_im_wall_offset(1, static_cast<int>(k), jitter, seed)); };
@@ -339,7 +339,7 @@ TEST(InteriorMapping, ThesisPrevNextRuleIsWrongTwoCandidateRuleIsExact)
         lib_wrong += (h.family != 1 || std::abs(lib_pos - wall(best_k)) > 1e-5) ? 1 : 0;
     }
     std::printf("[im] 1-D displaced walls, offsets uniform in [0, 1), %d rays: thesis prev/next rule wrong %ld "
-                "(seed000.md measured 52,413), two-candidate rule wrong %ld\n", N, thesis_wrong, lib_wrong);
+                "(an earlier check measured 52,413), two-candidate rule wrong %ld\n", N, thesis_wrong, lib_wrong);
     EXPECT_EQ(lib_wrong, 0);
     EXPECT_GT(thesis_wrong, N / 10);  // the thesis rule fails in the negative direction
 }
@@ -348,7 +348,8 @@ TEST(InteriorMapping, ThesisPrevNextRuleIsWrongTwoCandidateRuleIsExact)
 
 TEST(InteriorMapping, OnGridFacadeShowsTheRoomBehind)
 {
-    // seed000.md §2.10.2: unit cube, 4 rooms per unit, facade z = 1 on a grid plane, camera z = 5.
+    // Erratum of the appendix shader of van Dongen, "Using raycasting in GPU shaders to enhance
+    // real-time graphics" (2009): unit cube, 4 rooms per unit, facade z = 1 on a grid plane, camera z = 5.
     const rk_im_grid g = make_grid(glm::vec3(0.25f), glm::vec3(0.0f));
     const float zs[] = {1.0f, std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f), 1.0f + 4e-7f, 1.0f - 4e-7f};
     for (float z : zs) {

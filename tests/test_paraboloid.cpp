@@ -1,5 +1,6 @@
 // CPU tests of raykit/paraboloid.hpp (the C++ build of shaders/raykit/paraboloid.glsl plus the CPU
-// baking) against float64 formulas and the values of shared/reference/notes/seed002.md §3.7 / §8.2,
+// baking) against float64 formulas and values of the paraboloid maps of Fahlén, "Illumination for
+// Real-Time Rendering of Large Architectural Environments" (2005), §3.2.3 (Eq. 3.9-3.12),
 // and the accuracy-vs-budget comparison of issue 5 item 6 (dual paraboloid vs octahedral vs cube).
 #include <gtest/gtest.h>
 
@@ -324,6 +325,16 @@ TEST(Paraboloid, WindowFrameMatchesEq311)
     EXPECT_LT(worst_map, 1e-6);
     EXPECT_LT(worst_frame, 1e-6);
     EXPECT_EQ(rk_paraboloid_frame_angle(vec3(0.0f, 1.0f, 0.0f)), 0.0f);  // horizontal window: no angle
+    // Normals near +z with a tiny positive x: atan2(-tiny, -1) = -π + tiny, which float rounds to
+    // below -π; the documented range (-π, π] holds (+π: the same rotation).
+    for (float x : {1e-37f, 1e-30f, 1e-20f, 1e-10f, 1e-8f, 2e-8f, 1e-7f}) {
+        for (float z : {1.0f, 0.5f, 1e-3f, 1e10f}) {
+            const float a = rk_paraboloid_frame_angle(vec3(x * z, 0.0f, z));
+            EXPECT_GT(a, -RK_PI) << x << " " << z;
+            EXPECT_LE(a, RK_PI) << x << " " << z;
+            EXPECT_GT(std::fabs(a), 3.14159f) << x << " " << z;  // near ±π (the same rotation), not near 0
+        }
+    }
 }
 
 TEST(Paraboloid, GeneralFrameIsOrthonormalAndMapsD0ToN)

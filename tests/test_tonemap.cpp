@@ -435,6 +435,53 @@ TEST(Tonemap, NoNanOrInfForAnyInput)
     }
 }
 
+// The parameters, not only the colours, are adversarial: NaN / infinite / huge / denormal keys,
+// log-averages and white points keep every helper finite and in its documented range, and the
+// Uchimura curve stays finite up to FLT_MAX (each segment evaluated on its own range).
+TEST(Tonemap, ParametersAreSanitisedAndRangesHold)
+{
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float specials[] = {0.0f, -0.0f, -1.0f, 1e-45f, 1e-40f, 1e-20f, 0.18f, 1.0f, 1e18f, 1e30f, 3.4e38f, inf, -inf, nan};
+    for (float lum : specials) {
+        for (float key : specials) {
+            for (float avg : specials) {
+                const float s = rk_reinhard_scale(lum, key, avg);
+                ASSERT_TRUE(std::isfinite(s) && s >= 0.0f && s <= RK_HDR_MAX) << fmt(lum, key, avg) << " -> " << s;
+            }
+            const float w = key;  // as a white point
+            const float e = rk_reinhard_extended(lum, w);
+            ASSERT_TRUE(e >= 0.0f && e <= 1.0f) << fmt(lum, w, 0.0f) << " -> " << e;
+            const vec3 t = rk_tonemap_reinhard(vec3(lum, 0.5f, 2.0f), w);
+            ASSERT_TRUE(t.x >= 0.0f && t.x <= 1.0f && t.y >= 0.0f && t.y <= 1.0f && t.z >= 0.0f && t.z <= 1.0f)
+                << fmt(lum, w, 0.0f);
+        }
+    }
+    // A NaN white point is "no white point": the simple operator.
+    EXPECT_EQ(rk_reinhard_extended(3.0f, nan), rk_reinhard(3.0f));
+    // Uchimura's curve over the whole float range, with the defaults and a second parameter set.
+    for (float x : {0.0f, 1e-40f, 0.1f, 0.22f, 0.5f, 1.0f, 1e9f, 1e20f, 1e30f, 3.4e38f}) {
+        for (const vec3 y : {rk_uchimura_curve(vec3(x), 1.0f, 1.0f, 0.22f, 0.4f, 1.33f, 0.0f),
+                             rk_uchimura_curve(vec3(x), 1.5f, 1.2f, 0.3f, 0.3f, 1.5f, 0.01f)}) {
+            ASSERT_TRUE(std::isfinite(y.x) && y.x >= 0.0f) << x << " -> " << y.x;
+        }
+    }
+    // PBR Neutral: [0, 1], and 1 itself only for peaks above ~1.9e6 (float32 rounding).
+    std::mt19937 rng(5);
+    float largest_below = 0.0f;
+    for (int i = 0; i < 200000; ++i) {
+        const float p = std::exp2(std::uniform_real_distribution<float>(-10.0f, 60.0f)(rng));
+        const vec3 y = rk_pbr_neutral(vec3(p, 0.3f * p, 0.01f * p));
+        ASSERT_TRUE(y.x >= 0.0f && y.x <= 1.0f && y.y >= 0.0f && y.z >= 0.0f) << p;
+        if (y.x == 1.0f) {
+            ASSERT_GT(p, 1.9e6f);
+        } else {
+            largest_below = std::max(largest_below, p);
+        }
+    }
+    EXPECT_EQ(rk_pbr_neutral(vec3(1e18f)).x, 1.0f);
+    EXPECT_LT(rk_pbr_neutral(vec3(1.0e6f)).x, 1.0f);
+}
+
 TEST(Tonemap, ReinhardProperties)
 {
     for (float w : {0.5f, 1.0f, 4.0f, 11.2f, 468.75f}) {

@@ -1,7 +1,8 @@
 // raykit bench — bench_interior_gl: GPU frame time of interior mapping against a plain material,
 // on one scene, in one run (issue 4 item 10).
 //
-// The scene is the thesis's z-cull test scene (van Dongen 2009, §5.3; notes seed000.md §4.1-4.2):
+// The scene is the thesis's z-cull test scene (van Dongen, "Using raycasting in GPU shaders to
+// enhance real-time graphics", Master's thesis, Utrecht University, 2009, §5.3):
 // one mesh holding a grid of box buildings (8 x 8 buildings of 24 x 93 x 24 units, the thesis's
 // test building of 6 x 6 windows and 31 floors, with 16-unit streets), drawn in one call, seen by
 // a camera that moves down a street and turns. Every material draws the same mesh from the same

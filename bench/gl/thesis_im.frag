@@ -1,8 +1,8 @@
 #version 450
 // raykit bench — thesis_im.frag: a port to GLSL 4.50 of the interior-mapping pixel program of van
-// Dongen's thesis (2009, appendix), written for this benchmark from the structural description in
-// the project notes (seed000.md §2.6), not copied. It keeps the thesis's cost structure, which is
-// what the benchmark measures:
+// Dongen's thesis ("Using raycasting in GPU shaders to enhance real-time graphics", 2009, appendix),
+// written for this benchmark from a structural description of that program, not copied. It keeps
+// the thesis's cost structure, which is what the benchmark measures:
 //   - vectorised plane search: floor(P * f) + step(0, dir), divided by f, one vec3 for all axes;
 //   - ray fractions of the three plane families in one vec3 division (no guard against dir_i = 0,
 //     as in the thesis: an axis-parallel ray gives +inf, which the step selection never picks);

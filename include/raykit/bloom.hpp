@@ -32,8 +32,9 @@ struct BloomTap {
 /// gaussian_weights: the one-sided weights w[0..radius] of the discrete Gaussian
 /// exp(-i^2 / 2 sigma^2), normalised so that w[0] + 2 (w[1] + ... + w[radius]) = 1 (the full kernel
 /// of 2 radius + 1 taps is symmetric by construction). Computed in float64, rounded once.
-/// sigma = 3, radius = 9 (3 sigma; the thesis's sigma, radius not stated): w0 = 0.13318,
-/// w1 = 0.12598, ..., w9 = 0.00148 (seed002.md §2.7).
+/// sigma = 3, radius = 9 (3 sigma; the sigma of Fahlén, "Illumination for Real-Time Rendering of Large
+/// Architectural Environments" (2005), §3.4.2, which does not state a radius): w0 = 0.13318,
+/// w1 = 0.12598, ..., w9 = 0.00148.
 /// Requires sigma finite in (0, 1e4] and radius in [0, 4096]; otherwise returns an empty vector and
 /// describes the violation in *st (status.hpp).
 inline std::vector<float> gaussian_weights(float sigma, int radius, Status* st = nullptr)
@@ -57,7 +58,7 @@ inline std::vector<float> gaussian_weights(float sigma, int radius, Status* st =
 }
 
 /// linear_sampled_taps: merges the one-sided discrete weights w[0..r] (from gaussian_weights) into
-/// bilinear fetches (GPU Gems 2 ch. 20; seed002.md §2.7): the centre (0, w0), then for each pair of
+/// bilinear fetches (GPU Gems 2 ch. 20; Fahlén 2005 §3.4.2): the centre (0, w0), then for each pair of
 /// adjacent weights a = w[i], b = w[i+1] (i = 1, 3, 5, ...) one fetch at offset i + b / (a + b) with
 /// weight a + b, and a lone last weight (odd r) as (r, w[r]). A bilinear fetch there returns
 /// (a f(i) + b f(i+1)) / (a + b), so the sum reproduces the discrete convolution exactly up to

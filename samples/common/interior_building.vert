@@ -18,7 +18,8 @@
 // object-space normal, a unit horizontal tangent (cross(up, n); (1, 0, 0) on roofs) and the
 // facade's diffuse light (ambient + sun * max(N.L, 0), world space); the world-space position and
 // unit normal (the normal through the inverse transpose, so reflections are right under
-// non-uniform scale: seed000.md §2.10 item 10), the camera in object space (flat), the facade uv.
+// non-uniform scale, unlike the appendix vertex program of van Dongen, "Using raycasting in GPU
+// shaders to enhance real-time graphics", 2009), the camera in object space (flat), the facade uv.
 // The frame and the light are per-face constants on the planar facades interior mapping models,
 // so interpolating them is exact there (the fragment stage does not renormalise them).
 

@@ -1,6 +1,7 @@
 // raykit samples — rk_bloom_gl.hpp: an OpenGL 4.5 host for the bloom of shaders/raykit/bloom.glsl
-// and bloom_passes.glsl (seed002.md §2.7: bright pass -> 2x2 downsamples -> separable Gaussian on 4
-// levels from 1/8 -> magnify and add), with the skip: a small GPU max/count reduction runs first and
+// and bloom_passes.glsl (Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural
+// Environments", §3.4: bright pass -> 2x2 downsamples -> separable Gaussian on 4 levels from 1/8 ->
+// magnify and add), with the skip: a small GPU max/count reduction runs first and
 // when no pixel's luminance exceeds the bright pass's cutoff, no draw is issued at all.
 //
 // Per frame (defaults: 1/8, 4 levels, sigma 3, radius 9), for a W x H HDR texture:

@@ -5,10 +5,10 @@
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/bloom.hpp, which also holds the
 // CPU-only parts (Gaussian weights, merged linear-sampling taps, the chain sizes and a CPU reference
 // of the whole bloom). The texture-sampling pass code is GLSL only: raykit/bloom_passes.glsl.
-// Source: Fahlén 2005 §3.4 and shared/reference/notes/seed002.md §2.7, §8.6: bloom = low-pass of the
-// thresholded HDR image (luminance > 1.5), 4 levels from 1/8 size, Gaussian sigma = 3, added to the
-// original. Beyond the thesis: soft knee against popping, Karis average against fireflies (Karis 2013,
-// Jimenez 2014), energy-preserving composites.
+// Source: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural Environments",
+// §3.4: bloom = low-pass of the thresholded HDR image (luminance > 1.5), 4 levels from 1/8 size,
+// Gaussian sigma = 3, added to the original. Beyond the thesis: soft knee against popping, Karis
+// average against fireflies (Karis 2013, Jimenez 2014), energy-preserving composites.
 //
 // Conventions, used by every function here:
 //   - Colours are linear, scene-referred RGB. Every colour or luminance input is first sanitised by
@@ -234,23 +234,26 @@ RK_INLINE vec3 rk_bloom_karis_average(vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec4 w
 /// centred at i), that a fragment at window coordinate `frag` (pixel centres at i + 0.5) of a
 /// `dst_size` target samples when both cover the same [0, 1] range: frag / dst * src - 0.5, as a
 /// GL_LINEAR fetch at u = frag / dst would. For a 2:1 reduction it lands on the corner between
-/// four texels (a 2x2 box). Domain: sizes clamped to [1, 65536], frag to [0, dst_size]. Max error:
-/// 2 roundings (< 1e-6 texel for sizes < 4096). Cost: 1 div + 1 madd.
+/// four texels (a 2x2 box). Domain: any float: sizes clamped to [1, 65536] and frag to
+/// [0, dst_size], NaN taken as the lower bound (every result is in [-0.5, src_size - 0.5]). Max
+/// error: 2 roundings (< 1e-6 texel for sizes < 4096). Cost: 1 div + 1 madd, 3 compares.
 RK_INLINE float rk_bloom_source_texel(float frag, float dst_size, float src_size)
 {
-    float d = clamp(dst_size, 1.0f, 65536.0f);
-    float s = clamp(src_size, 1.0f, 65536.0f);
-    return clamp(frag, 0.0f, d) / d * s - 0.5f;
+    float d = dst_size > 1.0f ? min(dst_size, 65536.0f) : 1.0f;
+    float s = src_size > 1.0f ? min(src_size, 65536.0f) : 1.0f;
+    float f = frag > 0.0f ? min(frag, d) : 0.0f;
+    return f / d * s - 0.5f;
 }
 
 /// rk_bloom_bilinear_weights: the four bilinear weights of a fetch at texel position p, for the
 /// texels floor(p) + (0,0), (1,0), (0,1), (1,1), in that order. The fraction is p - floor(p) (not
-/// fract(), to read the same in both languages). Sum 1 up to one rounding. Domain: finite p, clamped
-/// to [-1e7, 1e7]. Max error: 2 roundings per weight. Cost: 2 floor + 6 flops.
+/// fract(), to read the same in both languages). Sum 1 up to one rounding, each weight in [0, 1].
+/// Domain: any float: p clamped to [-1e7, 1e7], NaN taken as -1e7 (weights (1, 0, 0, 0)). Max
+/// error: 2 roundings per weight. Cost: 2 floor + 6 flops.
 RK_INLINE vec4 rk_bloom_bilinear_weights(vec2 p)
 {
-    float px = clamp(p.x, -1.0e7f, 1.0e7f);
-    float py = clamp(p.y, -1.0e7f, 1.0e7f);
+    float px = p.x > -1.0e7f ? min(p.x, 1.0e7f) : -1.0e7f;
+    float py = p.y > -1.0e7f ? min(p.y, 1.0e7f) : -1.0e7f;
     float tx = px - floor(px);
     float ty = py - floor(py);
     return vec4((1.0f - tx) * (1.0f - ty), tx * (1.0f - ty), (1.0f - tx) * ty, tx * ty);
@@ -280,14 +283,15 @@ RK_INLINE vec3 rk_bloom_composite_add(vec3 hdr, vec3 bloom, float strength)
 }
 
 /// rk_bloom_composite_mix: mix(hdr, bloom, strength) = hdr (1 - s) + bloom s (Jimenez 2014), written
-/// out so both languages round alike; s = strength clamped to [0, 1], colours sanitised. Preserves
+/// out so both languages round alike; s = strength clamped to [0, 1], colours sanitised, result
+/// clamped to RK_HDR_MAX (the two products can round one ulp above it). Preserves
 /// energy when bloom is a normalised blur of the whole image (threshold 0); with a threshold it
 /// also darkens everything below it by (1 - s) — see rk_bloom_composite_conserve.
 /// Max error vs float64: 1.7e-7 relative (measured). Cost: 2 mul + 1 add (vec3).
 RK_INLINE vec3 rk_bloom_composite_mix(vec3 hdr, vec3 bloom, float strength)
 {
     float s = rk_saturate(rk_bloom_sanitize(strength));
-    return rk_bloom_sanitize(hdr) * (1.0f - s) + rk_bloom_sanitize(bloom) * s;
+    return min(rk_bloom_sanitize(hdr) * (1.0f - s) + rk_bloom_sanitize(bloom) * s, vec3(RK_HDR_MAX));
 }
 
 /// rk_bloom_composite_conserve: hdr + s (bloom - bright), where bright is the bright pass of this

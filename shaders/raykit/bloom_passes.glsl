@@ -3,7 +3,8 @@
 // raykit::bloom_reference in raykit/bloom.hpp, and samples/common/rk_bloom_gl.hpp is a GL 4.5 host
 // that runs them (its fragment shaders are a few lines of uniforms plus a call to one function here).
 //
-// The chain (seed002.md §2.7, "Kawase downsample + Gaussian"):
+// The chain (Fahlén, "Illumination for Real-Time Rendering of Large Architectural Environments"
+// (2005), §3.4.2: Kawase's downsampling followed by a Gaussian):
 //   1. rk_bloom_prefilter:  full-size HDR -> 1/2: bright pass of 4 texels (texelFetch, clamped to
 //      the edge), then their bilinear-weighted average (the 2x2 box for even sizes), optionally
 //      Karis-weighted.

@@ -3,10 +3,11 @@
 // approximation with its sigmoid, the exact ray-plane correction, and the box projection.
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/envmap_correction.hpp.
-// Source: Fahlén 2005 §3.2.4 "Accurate Reflections" (Brennan, ShaderX 2002: R' = R + CP / r; the
-// plane at d = 8 m whose hypotenuse is d / (N·R); the sigmoid with a = -4.7, k = 0.9);
-// seed002.md §3.8 and §8.3 (the sigmoid's x is the angle between N and R in radians; the
-// un-tweaked plane model is exactly a ray-plane parallax correction); Bjorke, GPU Gems ch. 19
+// Source: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural Environments",
+// §3.2.4 "Accurate Reflections" (Brennan, ShaderX 2002: R' = R + CP / r; the plane at d = 8 m whose
+// hypotenuse is d / (N·R); the sigmoid with a = -4.7, k = 0.9, whose x the thesis leaves unstated:
+// the angle between N and R in radians fits its description; the un-tweaked plane model is exactly
+// a ray-plane parallax correction); Bjorke, GPU Gems ch. 19
 // (2004) and Lagarde & Zanuttini, "Local image-based lighting with parallax-corrected cubemap"
 // (SIGGRAPH 2012) for the box projection.
 //
@@ -70,7 +71,7 @@ RK_INLINE float rk_envmap_angle(float cos_nr)
 }
 
 /// rk_envmap_sigmoid: the thesis's logistic weight σ(x) = 1 / (1 + e^(-a (x - k))). With the
-/// thesis's a = -4.7, k = 0.9 and x the angle between N and R in radians (seed002.md erratum 6):
+/// thesis's a = -4.7, k = 0.9 and x the angle between N and R in radians (x is unstated there):
 /// σ(0) = 0.98566, σ(0.5) = 0.8676, σ(0.9) = 0.5, σ(1.2) = 0.1962, σ(π/2) = 0.04098, i.e. close to
 /// cos x at small angles and closer to cos^2 x towards grazing. Domain: x, a, k clamped to ±1e6,
 /// the exponent to ±80 (σ stays in [1.8e-35, 1]). Max error: that of the driver's exp

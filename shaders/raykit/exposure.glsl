@@ -4,11 +4,12 @@
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/exposure.hpp, which adds the
 // CPU references (log_average_luminance, luminance_histogram, reinhard_auto_params) and the
 // reduction-chain planner. The GPU reduction kernels are in luminance_reduce.glsl.
-// Sources: Fahlén 2005 §3.3.1 (Eq. 3.14, log-average with a small delta), Reinhard 2002 "Parameter
-// estimation for photographic tone reproduction" (Eq. 3.18-3.19 of the thesis, exponents restored
-// in shared/reference/notes/seed002.md §2.6), Lagarde & de Rousiers 2014 "Moving Frostbite to PBR"
-// §5.1 (EV100, exposure = 1 / (1.2 * 2^EV100)), Pattanaik et al. 2000 / Krawczyk et al. 2005
-// (exponential adaptation L_a += (L_t - L_a)(1 - exp(-dt / tau))).
+// Sources: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural Environments",
+// §3.3.1 (Eq. 3.14, log-average with a small delta), Reinhard 2002 "Parameter estimation for
+// photographic tone reproduction" (Eq. 3.18-3.19 of the thesis, read with Reinhard's exponents),
+// Lagarde & de Rousiers 2014 "Moving Frostbite to PBR" §5.1 (EV100, exposure = 1 / (1.2 * 2^EV100)),
+// Pattanaik et al. 2000 / Krawczyk et al. 2005 (exponential adaptation
+// L_a += (L_t - L_a)(1 - exp(-dt / tau))).
 //
 // Conventions:
 //   lum        relative luminance (rk_luminance of linear Rec.709), scene-referred, >= 0.
@@ -119,7 +120,7 @@ RK_INLINE float rk_log_average_from_sum(float sum_log2, float count)
 /// either order; the ratio is clamped to [-1, 1] (a log-average outside the robust [Lmin, Lmax]
 /// saturates the key to [0.045, 0.72]); the range is floored at RK_REINHARD_MIN_RANGE stops, so flat
 /// images give ~0.18 instead of 0/0. Use Lmin/Lmax of the same delta + L term as the log-average.
-/// Test vectors (seed002 §2.6, Lmin 0.01, Lmax 100): Lavg 1 -> 0.18, 10 -> 0.36, 0.1 -> 0.09.
+/// Test vectors (Fahlén 2005 Eq. 3.18, Lmin 0.01, Lmax 100): Lavg 1 -> 0.18, 10 -> 0.36, 0.1 -> 0.09.
 /// Max error vs float64 (test_exposure): 3.6e-7 relative for ranges >= 1 stop; on narrower ranges
 /// it grows as ~3.2e-7 / range (stops), the size of the change a 1-ulp perturbation of the inputs
 /// causes (the function is that ill-conditioned there). Cost: 3 div, 3 log2, 1 exp2.

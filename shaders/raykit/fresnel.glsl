@@ -2,9 +2,9 @@
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/fresnel.hpp.
 // Source: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural
-// Environments", §3.1 (Fresnel, Schlick) and §3.2 (multiple reflections in a pane, Eq. 3.7-3.8);
-// corrections from shared/reference/notes/seed002.md §3 (cos form, per-polarisation slab,
-// TIR at 41.14° for n = 1.52).
+// Environments", §3.1.1 (Fresnel, Schlick) and §3.1.2 (multiple reflections in a pane, Eq. 3.7-3.8);
+// corrections to the thesis (cos form instead of its sin/tan form, which is 0/0 at normal incidence;
+// per-polarisation slab; TIR at 41.14° for n = 1.52, where the thesis says about 41.8°).
 //
 // Conventions, used by every function here:
 //   cos_i  cosine of the angle between the surface normal and the direction towards the viewer
@@ -285,8 +285,10 @@ RK_INLINE float rk_brewster_angle(float eta)
 /// writes the refracted direction to `transmitted`; under total internal reflection returns false
 /// and writes the mirror direction reflect(incident, normal) instead of a zero vector, so the
 /// caller always has a usable ray. Unit inputs give a unit output within 4 ulp.
-/// Domain: any finite vectors; cos is clamped to [0, 1] (a normal facing the wrong way is treated
-/// as grazing incidence). Cost: 1 sqrt, 1 div, ~15 flops.
+/// Domain: vectors with components of magnitude <= 1e15 (unit vectors intended; larger ones
+/// overflow the dot product or, divided by a small eta, the result), eta clamped to
+/// [RK_FRESNEL_ETA_MIN, RK_FRESNEL_ETA_MAX]: the output is finite there. cos is clamped to [0, 1]
+/// (a normal facing the wrong way is treated as grazing incidence). Cost: 1 sqrt, 1 div, ~15 flops.
 RK_INLINE bool rk_refract(vec3 incident, vec3 normal, float eta, RK_OUT(vec3) transmitted)
 {
     float c = rk_saturate(-dot(normal, incident));

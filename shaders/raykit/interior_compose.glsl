@@ -3,15 +3,17 @@
 // plain addition), per-room lights, and the distance fade to a flat interior.
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/interior_compose.hpp.
-// Source: van Dongen 2009 §5.2.3 (combining with the exterior, reflections in the windows),
-// §5.4.1 (varying lighting per room); seed000.md §2.4 (mask convention), §2.8a, §6.8 (Fresnel
-// instead of addition, per-room light colour and intensity); Fahlén 2005 §3.2 via window_glass.glsl.
+// Source: van Dongen 2009, "Using raycasting in GPU shaders to enhance real-time graphics",
+// §5.2.3 (combining with the exterior, reflections in the windows), §5.4.1 (varying lighting per
+// room) and its appendix shader (mask convention); beyond the thesis: Fresnel instead of addition,
+// per-room light colour and intensity; Fahlén 2005, "Illumination for Real-Time Rendering of Large
+// Architectural Environments", §3.2 via window_glass.glsl.
 //
 // WINDOW MASK CONVENTION: mask = 1 means window (show the interior behind glass), mask = 0 means
 // opaque facade. The exterior texture's alpha is the mask. The thesis disagrees with itself here:
 // its prose (§5.2.3) says alpha = 1 shows the diffuse exterior and alpha = 0 the interior, while its
 // appendix shader does lerp(wall, window, diffuse.a), i.e. alpha = 1 is the window. raykit follows
-// the code (and seed000.md §2.4): alpha = 1 window. A texture authored for the prose convention is
+// the code: alpha = 1 window. A texture authored for the prose convention is
 // used with mask = 1 - alpha. Fractional masks (filtered edges) blend linearly; masks at or below
 // RK_IM_MASK_MIN (half an 8-bit step) count as opaque so those texels can skip the trace
 // (rk_im_needs_interior), and then the result is exactly the exterior.

@@ -4,9 +4,9 @@
 // (nearest visible wins) and flipbook animation with a per-room phase.
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/interior_furniture.hpp.
-// Source: van Dongen 2009 §5.2.4 (furniture plane, alpha test, animated textures); the plane
-// equation, UVs and guards follow seed000.md §2.5 (the thesis gives no formula); layers and
-// flipbooks are seed000.md §6.2/§6.8 extensions.
+// Source: van Dongen 2009, "Using raycasting in GPU shaders to enhance real-time graphics",
+// §5.2.4 (furniture plane, alpha test, animated textures); the plane equation, UVs and guards are
+// derived here (the thesis gives no formula); layers and flipbooks are extensions beyond the thesis.
 //
 // Conventions (those of interior_mapping.glsl, same object space):
 //   p    the shaded surface point, cam the camera, both in object space; the ray is
@@ -15,7 +15,7 @@
 //        facade's frame (any length; normalised here), e.g. (1,0,0) and (0,1,0) for a +z facade.
 //   depth  D >= 0, the plane's distance behind the surface along -n, in object units.
 // The furniture plane is { X : dot(n, X - p) = -D }. With d = dot(n, p - cam) < 0 (camera outside):
-//   t_f = 1 - D / d = 1 + D / |d|            (seed000.md §2.5)
+//   t_f = 1 - D / d = 1 + D / |d|            (derived here; not in the thesis)
 // The UV of the hit is its position on the facade frame in room units,
 //   u = dot(X - origin, tangent) / dot(|tangent|, room_size),  v likewise with the bitangent,
 // wrapped to [0, 1) so every room shows the sprite once (one tile per room when the frame is

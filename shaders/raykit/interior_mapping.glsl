@@ -5,7 +5,8 @@
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/interior_mapping.hpp, which
 // adds CPU helpers (camera_to_object_space, room_grid_for_building, room_at, lit_fraction).
-// Source: van Dongen's thesis ch. 5 + appendix; seed000.md §2 lists the thesis's bugs fixed here.
+// Source: van Dongen, "Using raycasting in GPU shaders to enhance real-time graphics" (Master's
+// thesis, Utrecht University, 2009), ch. 5 + appendix; the thesis's bugs fixed here are listed below.
 //
 // THE MODEL. All work is in the building's object space. A grid (rk_im_grid) places planes of
 // axis i at origin_i + k * room_size_i, k integer; "grid units" below are room units,
@@ -13,7 +14,7 @@
 // the exterior surface (t = 1), n its outward normal. The hit is the nearest of the three
 // "next planes" beyond p, one per axis, found in constant time.
 //
-// WHAT IS FIXED RELATIVE TO THE THESIS (seed000.md §2.9-2.10):
+// WHAT IS FIXED RELATIVE TO THE THESIS (errata of its appendix shader, and what §5.4 leaves unstated):
 //  * Facade exactly on a grid plane (a unit cube with integer rooms per unit): the thesis's
 //    floor+step rule returns the plane AT the surface (t = 1, a flat wall that flickers with
 //    interpolation jitter). Here the next plane is chosen from a nudged point q' and is always
@@ -31,7 +32,7 @@
 //    1e-30), or a camera within 1e-20 room units of p: valid = false, and the documented defaults
 //    t = 1, depth = 0, family = 1, side = -1, room = rk_im_room_at(p), uv = uv_dx = uv_dy = 0,
 //    pos = p.
-//  * Room index from the chosen next-plane index per axis (seed000.md §2.9): room_i = plane_i - 1
+//  * Room index from the chosen next-plane index per axis (not given in §5.4): room_i = plane_i - 1
 //    when the ray travels toward +i, plane_i otherwise. It is the cell the ray segment from p to
 //    the hit lies in, so a corner room seen through two facades is the same room.
 //  * Analytic UV derivatives (rk_im_trace_grad): the derivative of the hit point on the chosen
@@ -51,7 +52,7 @@
 // displaced to k + delta_i(k) room units, delta_i(k) = jitter_i * rk_u32_to_unit(hash(k, i, seed))
 // in [0, 1): "one wall per cell", so walls keep their order and every room has a positive size
 // (up to rounding). Then the next wall from q' is wall m = floor(q') if it lies beyond q' along
-// the ray, else wall m + s: exact (two candidates, seed000.md §2.8c), verified against a brute
+// the ray, else wall m + s: exact (two candidates), verified against a brute
 // force search in the test. The thesis's literal previous/next pair is wrong for about one ray in
 // four (the test ports it and prints the count). The room index is that of the cell between
 // walls k and k+1; uv is normalised across the displaced room, [0, 1) over its actual width.

@@ -6,10 +6,11 @@
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/paraboloid.hpp, which adds the
 // CPU baking (cube -> dual paraboloid with supersampling and mips, the inverse, an octahedral map
 // for comparison). Texture lookups (GLSL only) are in paraboloid_sample.glsl.
-// Sources: Fahlén 2005 §3.2.3 (Eq. 3.9-3.12: thesis convention, front d0 = -z, the window frame
-// rotation about y), Heidrich & Seidel 1998 / Blythe SIGGRAPH '99 notes, Brabec et al. 2002
-// (dual-paraboloid shadow maps, d0 = +z, linear-distance depth); seed002.md §3.7 and §8.2 (the map
-// is the stereographic projection from the opposite pole; density 4 / (1 + s^2 + t^2)^2).
+// Sources: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural Environments",
+// §3.2.3 (Eq. 3.9-3.12: thesis convention, front d0 = -z, the window frame rotation about y),
+// Heidrich & Seidel 1998 / Blythe SIGGRAPH '99 notes, Brabec et al. 2002 (dual-paraboloid shadow
+// maps, d0 = +z, linear-distance depth). The map is the stereographic projection from the opposite
+// pole; density 4 / (1 + s^2 + t^2)^2.
 //
 // Conventions, used by every function here:
 //   hemi   which hemisphere a paraboloid covers, as the sign of its axis d0 = (0, 0, hemi):
@@ -204,7 +205,10 @@ RK_INLINE float rk_paraboloid_frame_angle(vec3 n)
     float y = -(n.x * pre) * inv;
     float x = -(n.z * pre) * inv;
     // A zero (or denormal) y of either sign gives +π, not -π, on every backend.
-    return atan(abs(y) < RK_FLT_MIN ? 0.0f : y, abs(x) < RK_FLT_MIN ? 0.0f : x);
+    float a = atan(abs(y) < RK_FLT_MIN ? 0.0f : y, abs(x) < RK_FLT_MIN ? 0.0f : x);
+    // A tiny negative y (n near +z, n.x > 0) gives -π + ε, which float rounds to the float
+    // nearest -π (below -π): the same rotation as +π, which keeps the result in (-π, π].
+    return a < -3.1415925f ? RK_PI : a;
 }
 
 /// rk_paraboloid_frame_vertical: R_y(θ) as a mat3 (columns: the window frame's x, y, z axes in

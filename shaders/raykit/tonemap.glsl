@@ -56,11 +56,14 @@ RK_OPTION_CHECK(rk_option_agx_look, RK_AGX_LOOK);
 // Reinhard (thesis Eq. 3.15-3.17)
 
 /// rk_reinhard_scale: the scaling operator L_s = (key / L_avg) L (Eq. 3.15, with the log-average
-/// L_avg the thesis's text garbles). key is the target middle grey (0.18 typical). L_avg is
-/// floored at 1e-20. Exact (2 roundings). Cost: 1 div, 1 mul.
+/// L_avg the thesis's text garbles). key is the target middle grey (0.18 typical). lum and key
+/// are sanitised (rk_hdr_sanitize), L_avg is clamped to [1e-20, RK_HDR_MAX] (NaN -> 1e-20), and the
+/// result to [0, RK_HDR_MAX]: finite for every input. Exact (2 roundings) below the clamp.
+/// Cost: 1 div, 1 mul, 2 compares.
 RK_INLINE float rk_reinhard_scale(float lum, float key, float log_average)
 {
-    return rk_hdr_sanitize(lum) * (rk_hdr_sanitize(key) / max(log_average, 1e-20f));
+    float avg = log_average > 1e-20f ? min(log_average, RK_HDR_MAX) : 1e-20f;
+    return min(rk_hdr_sanitize(lum) * (rk_hdr_sanitize(key) / avg), RK_HDR_MAX);
 }
 
 /// rk_reinhard: L / (1 + L) (Eq. 3.16). Monotonic, 0 -> 0, -> 1 as L -> inf. Domain: sanitised.
@@ -72,12 +75,13 @@ RK_INLINE float rk_reinhard(float x)
 }
 
 /// rk_reinhard_extended: L (1 + L / W^2) / (1 + L) (Eq. 3.17): L = W maps exactly to 1; values
-/// above W (which the formula maps above 1, "burn-out") are clamped to 1. white is floored at
-/// 1e-9; white >= 1e9 is the simple operator to float precision. Max error: 4 ulp. Cost: 1 div, 4 flops.
+/// above W (which the formula maps above 1, "burn-out") are clamped to 1. white is clamped to
+/// [1e-9, RK_HDR_MAX]; a NaN white is RK_HDR_MAX (no white point: the simple operator); white >=
+/// 1e9 is the simple operator to float precision. Max error: 4 ulp. Cost: 1 div, 4 flops.
 RK_INLINE float rk_reinhard_extended(float x, float white)
 {
     float v = rk_hdr_sanitize(x);
-    float w = clamp(white, 1e-9f, RK_HDR_MAX);
+    float w = white >= 1e-9f ? min(white, RK_HDR_MAX) : (white < 1e-9f ? 1e-9f : RK_HDR_MAX);
     if (v >= w) {
         return 1.0f;
     }
@@ -228,7 +232,9 @@ RK_INLINE vec3 rk_agx(vec3 rgb, int look)
 /// the peak 0.76 colours pass unchanged (base colours 0.08..0.8 reproduce exactly as c - 0.04);
 /// above it the peak is compressed to 1 - d^2 / (p + d - 0.76), d = 0.24, and the colour mixes
 /// toward the grey of the NEW PEAK (vec3(newPeak), the spec; the first published GLSL mixed
-/// toward vec3(1)) by g = 1 - 1 / (0.15 (p - newPeak) + 1). Output in [0, 1). Hue-preserving.
+/// toward vec3(1)) by g = 1 - 1 / (0.15 (p - newPeak) + 1). Output in [0, 1]: below 1 in exact
+/// arithmetic, but float32 rounds the compressed peak up to exactly 1 for peaks above about
+/// 1.9e6 (1 - 0.0576 / (p - 0.52) is then within half an ulp of 1). Hue-preserving.
 /// Max error vs float64 of the spec formula: 1.4e-7. Cost: ~20 flops, 2 div.
 RK_INLINE vec3 rk_pbr_neutral(vec3 rgb)
 {
@@ -338,8 +344,10 @@ RK_INLINE vec3 rk_lottes(vec3 rgb)
 
 /// rk_uchimura_curve: Uchimura 2017 (Gran Turismo) toe / linear / shoulder curve with max
 /// brightness P, contrast a, linear start m, linear length l, black tightness c, pedestal b.
-/// Domain: x >= 0. The parameters are not clamped: the formula needs m > 0 (x / m), a > 0, m < P
-/// and l < 1 (it divides by P - S1 = (P - m)(1 - l)). Max error vs float64: 5.7e-8 with the
+/// Domain: x >= 0 up to FLT_MAX (each segment is evaluated on its own range, min(x, m) for the toe
+/// and min(x, S0) for the line, so no infinity meets a zero weight). The parameters are not
+/// clamped: the formula needs m > 0 (x / m), a > 0, m < P and l < 1 (it divides by
+/// P - S1 = (P - m)(1 - l)). Max error vs float64: 5.7e-8 with the
 /// defaults, 9.7e-8 with P 1.5, a 1.2, m 0.3, l 0.3, c 1.5, b 0.01, over x in [1e-5, 1e4] on the CPU
 /// (test_tonemap CurvesAndHelpersMatchFloat64). Cost: 1 pow, 1 exp, 1 smoothstep, ~15 flops per channel.
 RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, float c, float b)
@@ -352,9 +360,9 @@ RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, flo
     vec3 w0 = vec3(1.0f) - smoothstep(vec3(0.0f), vec3(m), x);
     vec3 w2 = step(vec3(m + l0), x);
     vec3 w1 = vec3(1.0f) - w0 - w2;
-    vec3 T = m * pow(x / m, vec3(c)) + vec3(b);
+    vec3 T = m * pow(min(x, vec3(m)) / m, vec3(c)) + vec3(b);
     vec3 S = vec3(P) - (P - S1) * exp(CP * (x - vec3(S0)));
-    vec3 L = vec3(m) + a * (x - vec3(m));
+    vec3 L = vec3(m) + a * (min(x, vec3(S0)) - vec3(m));
     return T * w0 + L * w1 + S * w2;
 }
 

@@ -3,9 +3,10 @@
 // the interior seen through the tinted glass.
 //
 // Shared GLSL/C++ source (docs/dialect.md); the C++ build is raykit/window_glass.hpp.
-// Source: Fahlén 2005 §3.1-3.2 (reflections in building windows: Fresnel with the slab's multiple
-// reflections, Eq. 3.7-3.8, weighting an environment-map reflection); seed002.md §3.2 (per
-// polarisation order, N panes). The reflection colour comes from the caller (a dual-paraboloid
+// Source: Fahlén 2005, "Illumination for Real-Time Rendering of Large Architectural Environments",
+// §3.1-3.2 (reflections in building windows: Fresnel with the slab's multiple reflections,
+// Eq. 3.7-3.8, weighting an environment-map reflection); beyond the thesis: the slab applied per
+// polarisation, N panes. The reflection colour comes from the caller (a dual-paraboloid
 // or cube lookup, see paraboloid_sample.glsl and envmap_correction.glsl), the interior colour
 // from interior mapping or any other source.
 //
@@ -70,7 +71,7 @@ RK_INLINE float rk_window_glass_cos(vec3 normal, vec3 to_eye)
 /// rk_window_glass_reflectance_exact: the exact reflectance of `panes` identical non-absorbing
 /// panes (two surfaces each), incoherent multiple reflections summed per polarisation:
 /// rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes). One pane, n = 1.52:
-/// 0.081682 at normal incidence, 0.15653 at 60°, 0.75435 at 85° (seed002.md §3.2). Domain as in
+/// 0.081682 at normal incidence, 0.15653 at 60°, 0.75435 at 85°. Domain as in
 /// fresnel.glsl (cos_i in [0, 1], eta clamped, panes in [0, 1e6]). Max error: 1e-6.
 /// Cost: 1 sqrt, 4 div, ~30 flops.
 RK_INLINE float rk_window_glass_reflectance_exact(float cos_i, float eta, float panes)
@@ -96,8 +97,11 @@ RK_CONFIGURED_BEGIN(RK_NS_WINDOW_GLASS)
 /// rk_window_glass_reflectance: the reflectance selected by RK_WINDOW_GLASS_FRESNEL (see the
 /// file header). `panes` is read by the fast mode and by fresnel.glsl's RK_FRESNEL_WINDOW_MODE 3.
 /// The fast mode builds its params inline (one sqrt, folded when eta is a constant).
-/// Domain: cos_i clamped to [0, 1], eta as fresnel.glsl (eta < 1 gives total internal reflection,
-/// 1, past the critical angle), panes clamped to [0, 1e6]. Edge cases: grazing (cos_i = 0) gives
+/// Domain: cos_i clamped to [0, 1], panes clamped to [0, 1e6]. eta: the exact mode takes
+/// fresnel.glsl's domain (eta < 1 gives total internal reflection, 1, past the critical angle); the
+/// fast mode models external reflection only and clamps eta to [1, RK_FRESNEL_ETA_MAX]
+/// (rk_fresnel_fast_params), so it never reports total internal reflection: eta < 1 there is
+/// treated as eta = 1 (reflectance 0 except at grazing incidence). Edge cases: grazing (cos_i = 0) gives
 /// 1; normal incidence 0.0816820 for one pane of n = 1.52.
 /// Max error, default build (exact mode 0 with RK_FRESNEL_WINDOW_MODE 2: one pane, the series
 /// summed per polarisation; equal bit for bit to rk_fresnel_window), vs the float64
