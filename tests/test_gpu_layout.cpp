@@ -89,6 +89,8 @@ TEST(GpuLayout, OffsetsAndSizesMatchGlslangReflection)
     expect_layout_matches_glslang<rk_im_grid>("rk_im_grid", "raykit/interior_mapping.glsl");
     expect_layout_matches_glslang<rk_im_window_params>("rk_im_window_params", "raykit/interior_params.glsl");
     expect_layout_matches_glslang<rk_svo_tree>("rk_svo_tree", "raykit/svo_traverse.glsl");
+    expect_layout_matches_glslang<rk_im_building_frame>("rk_im_building_frame", "raykit/interior_params.glsl");
+    expect_layout_matches_glslang<rk_im_building_vertex>("rk_im_building_vertex", "raykit/interior_params.glsl");
 }
 
 TEST(GpuLayout, TheIssueCaseByHand)
@@ -143,6 +145,27 @@ TEST(GpuLayout, PackWritesEachFieldAtItsOffset)
     }
 }
 
+TEST(GpuLayout, MatricesPackColumnMajor)
+{
+    rk_im_building_vertex v = rk_im_building_vertex_default();
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) v.clip_from_world[c][r] = static_cast<float>(10 * c + r);
+    }
+    for (const GpuLayout l : {GpuLayout::std140, GpuLayout::std430}) {
+        const std::vector<uint8_t> b = gpu_pack(v, l);
+        size_t off = 0;
+        for (const GpuMember& m : gpu_members<rk_im_building_vertex>(l)) {
+            if (m.name == "clip_from_world") off = m.offset;
+        }
+        ASSERT_EQ(off, 64u);
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) EXPECT_EQ(float_at(b, off + 16 * c + 4 * r), static_cast<float>(10 * c + r));
+        }
+        EXPECT_EQ(float_at(b, 0), 1.0f);   // world_from_object: identity
+        EXPECT_EQ(float_at(b, 4), 0.0f);
+    }
+}
+
 TEST(GpuLayout, DefaultsAreTheSampleMaterials)
 {
     // rk_im_window_params_default() documents the sample material's uniform defaults
@@ -193,4 +216,13 @@ TEST(GpuLayout, DefaultsAreTheSampleMaterials)
     expect("u_atlas", {p.atlas.x, p.atlas.y, p.atlas.z, p.atlas.w});
     expect("u_tint_amount", {p.tint_amount});
     EXPECT_EQ(p.unlit, RK_IM_UNLIT_DEFAULT);
+    const rk_im_building_frame fr = rk_im_building_frame_default();
+    expect("u_facade_color", {fr.facade_color.x, fr.facade_color.y, fr.facade_color.z});
+    expect("u_frame_color", {fr.frame_color.x, fr.frame_color.y, fr.frame_color.z});
+    expect("u_window_size", {fr.window_size.x, fr.window_size.y});
+    expect("u_sky_color", {fr.sky_color.x, fr.sky_color.y, fr.sky_color.z});
+    expect("u_env_guard_scale", {fr.env_guard_scale});
+    expect("u_env_lod_bias", {fr.env_lod_bias});
+    expect("u_exposure", {fr.exposure});
+    expect("u_reinhard_white", {fr.reinhard_white});
 }

@@ -12,8 +12,9 @@
 // tests/test_gpu_layout.cpp compiles each struct inside a std140 and a std430 block with glslang
 // and checks every member's offset, the member set and the block size against its reflection, so a
 // field list that drifts from the GLSL struct fails there. Supported members: float, int32_t,
-// uint32_t, bool (a 4-byte uint in a block), glm vec2/3/4, ivec2/3/4, uvec2/3/4, and nested structs
-// with their own rk_gpu_fields. Arrays and matrices: not needed by any raykit struct yet.
+// uint32_t, bool (a 4-byte uint in a block), glm vec2/3/4, ivec2/3/4, uvec2/3/4, mat4 (column-major,
+// as GLSL's default), and nested structs with their own rk_gpu_fields. Arrays and other matrices:
+// not needed by any raykit struct yet.
 //
 // Cost: one pass over the fields (no allocation) per gpu_pack; the offsets are the same each call.
 #pragma once
@@ -65,6 +66,7 @@ RK_GPU_LEAF(glm::uvec3, 12, 16)
 RK_GPU_LEAF(glm::vec4, 16, 16)
 RK_GPU_LEAF(glm::ivec4, 16, 16)
 RK_GPU_LEAF(glm::uvec4, 16, 16)
+RK_GPU_LEAF(glm::mat4, 64, 16)
 #undef RK_GPU_LEAF
 
 inline size_t gpu_round_up(size_t x, size_t a) { return (x + a - 1) / a * a; }
@@ -77,6 +79,8 @@ void gpu_write_leaf(uint8_t* dst, const T& v)
         std::memcpy(dst, &u, 4);
     } else if constexpr (std::is_arithmetic<T>::value) {
         std::memcpy(dst, &v, 4);
+    } else if constexpr (std::is_same<T, glm::mat4>::value) {
+        for (int c = 0; c < 4; ++c) std::memcpy(dst + 16 * c, &v[c][0], 16);  // column-major, vec4 columns
     } else {
         for (int i = 0; i < T::length(); ++i) std::memcpy(dst + 4 * i, &v[i], 4);
     }

@@ -40,4 +40,32 @@ void rk_gpu_fields(V& v, const rk_im_window_params& s)
     v("average_colour", s.average_colour);
 }
 
+/// The fields of rk_im_building_frame for gpu_pack.
+template <class V>
+void rk_gpu_fields(V& v, const rk_im_building_frame& s)
+{
+    v("camera_world", s.camera_world);
+    v("env_guard_scale", s.env_guard_scale);
+    v("facade_color", s.facade_color);
+    v("env_lod_bias", s.env_lod_bias);
+    v("frame_color", s.frame_color);
+    v("exposure", s.exposure);
+    v("sky_color", s.sky_color);
+    v("reinhard_white", s.reinhard_white);
+    v("window_size", s.window_size);
+}
+
+/// The fields of rk_im_building_vertex for gpu_pack.
+template <class V>
+void rk_gpu_fields(V& v, const rk_im_building_vertex& s)
+{
+    v("world_from_object", s.world_from_object);
+    v("clip_from_world", s.clip_from_world);
+    v("camera_world", s.camera_world);
+    v("sun_dir", s.sun_dir);
+    v("sun_color", s.sun_color);
+    v("ambient", s.ambient);
+    v("uv_scale", s.uv_scale);
+}
+
 }  // namespace raykit

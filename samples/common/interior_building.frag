@@ -20,6 +20,10 @@
 //                               measured: no gain on llvmpipe, see docs/benchmarks_interior.md)
 //   RK_IM_BUILDING_FACADE [0]   0 procedural facade (a window centred in every room face),
 //                               1 facade texture u_facade (RGB albedo, A = window mask, 1 = window)
+//   RK_IM_BUILDING_BLOCK [0]    0 loose uniforms with defaults (OpenGL run-time GLSL), 1 the same
+//                               values in std140 blocks (binding 8 here, 9 in the vertex stage),
+//                               for SPIR-V (Vulkan, OpenGL) and HLSL / MSL through SPIRV-Cross;
+//                               fill them with raykit::gpu_pack (docs/integration.md)
 //   RK_IM_BUILDING_OUTPUT [0]   0 linear HDR (times u_exposure), 1 rk_tonemap (RK_TONEMAP_OPERATOR)
 //                               then sRGB encoding, for an RGBA8 (non-sRGB) target
 // MINIMAL VARIANT (benchmark baseline): every macro 0, or RK_IM_BUILDING_FACADE=1 with everything
@@ -67,8 +71,17 @@
 #ifndef RK_IM_BUILDING_OUTPUT
 #define RK_IM_BUILDING_OUTPUT 0
 #endif
+#ifndef RK_IM_BUILDING_BLOCK
+#define RK_IM_BUILDING_BLOCK 0
+#endif
+#if RK_IM_BUILDING_BLOCK < 0 || RK_IM_BUILDING_BLOCK > 1
+#error "RK_IM_BUILDING_BLOCK must be 0 (loose uniforms with defaults: OpenGL run-time GLSL) or 1 (std140 blocks: SPIR-V, Vulkan, HLSL/MSL)"
+#endif
 
 #include "raykit/interior_shading.glsl"
+#if RK_IM_BUILDING_BLOCK
+#include "raykit/interior_params.glsl"
+#endif
 #if RK_IM_REFLECTION
 #include "raykit/paraboloid_sample.glsl"
 #endif
@@ -87,6 +100,47 @@ layout(location = 7) in vec3 v_light;
 
 layout(location = 0) out vec4 o_color;
 
+#if RK_IM_BUILDING_BLOCK
+// The uniform-block form: the same values in two std140 blocks (binding 8 here; the vertex stage's
+// block is binding 9), written on the host with raykit::gpu_pack from rk_im_window_params and
+// rk_im_building_frame (raykit/interior_params.hpp). The per-fragment fields of u_params (normal,
+// tangent, bitangent) are not read.
+layout(std140, binding = 8) uniform RkBuildingFragment {
+    rk_im_window_params u_params;
+    rk_im_building_frame u_frame;
+};
+#define u_camera_world u_frame.camera_world
+#define u_room_size u_params.grid.room_size
+#define u_grid_origin u_params.grid.origin
+#define u_seed u_params.seed
+#define u_wall_jitter u_params.jitter
+#define u_facade_color u_frame.facade_color
+#define u_frame_color u_frame.frame_color
+#define u_window_size u_frame.window_size
+#define u_glass_tint u_params.glass_tint
+#define u_glass_eta u_params.glass_eta
+#define u_glass_panes u_params.glass_panes
+#define u_sky_color u_frame.sky_color
+#define u_env_guard_scale u_frame.env_guard_scale
+#define u_env_lod_bias u_frame.env_lod_bias
+#define u_lit_probability u_params.lit_probability
+#define u_light_warm u_params.light_warm
+#define u_light_cool u_params.light_cool
+#define u_light_level u_params.light_level
+#define u_unlit u_params.unlit
+#define u_furniture_depth u_params.furniture_depth
+#define u_flipbook u_params.flipbook.xyz
+#define u_flipbook_fps u_params.flipbook_fps
+#define u_time u_params.time
+#define u_alpha_threshold u_params.alpha_threshold
+#define u_fade_range u_params.fade_range
+#define u_room_average u_params.average_colour
+#define u_variants u_params.variants
+#define u_atlas u_params.atlas
+#define u_tint_amount u_params.tint_amount
+#define u_exposure u_frame.exposure
+#define u_reinhard_white u_frame.reinhard_white
+#else
 uniform vec3 u_camera_world;
 uniform vec3 u_room_size = vec3(4.0, 3.0, 4.0);
 uniform vec3 u_grid_origin = vec3(0.0);
@@ -118,6 +172,7 @@ uniform vec4 u_atlas = vec4(4.0, 272.0, 8.0, 4.0);
 uniform float u_tint_amount = 0.35;
 uniform float u_exposure = 1.0;
 uniform float u_reinhard_white = 4.0;
+#endif
 
 #if RK_IM_BUILDING_FACADE
 layout(binding = 0) uniform sampler2D u_facade;

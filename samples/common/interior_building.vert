@@ -1,4 +1,10 @@
 #version 450 core
+#ifndef RK_IM_BUILDING_BLOCK
+#define RK_IM_BUILDING_BLOCK 0
+#endif
+#if RK_IM_BUILDING_BLOCK
+#extension GL_GOOGLE_include_directive : require
+#endif
 // raykit — interior_building.vert: vertex stage of the interior-mapped building material
 // (samples/common/interior_building.frag documents the whole material). Copy both files freely.
 //
@@ -27,6 +33,20 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
 
+#if RK_IM_BUILDING_BLOCK
+// The uniform-block form (see interior_building.frag): rk_im_building_vertex written with
+// raykit::gpu_pack (raykit/interior_params.hpp).
+#include "raykit/common.glsl"
+#include "raykit/interior_params.glsl"
+layout(std140, binding = 9) uniform RkBuildingVertex { rk_im_building_vertex u_vertex; };
+#define u_world_from_object u_vertex.world_from_object
+#define u_clip_from_world u_vertex.clip_from_world
+#define u_camera_world u_vertex.camera_world
+#define u_uv_scale u_vertex.uv_scale
+#define u_sun_dir u_vertex.sun_dir
+#define u_sun_color u_vertex.sun_color
+#define u_ambient u_vertex.ambient
+#else
 uniform mat4 u_world_from_object;
 uniform mat4 u_clip_from_world;
 uniform vec3 u_camera_world;
@@ -34,6 +54,7 @@ uniform vec2 u_uv_scale = vec2(1.0);
 uniform vec3 u_sun_dir = vec3(0.5, 0.33166, 0.8);
 uniform vec3 u_sun_color = vec3(1.0, 1.0, 0.9);
 uniform vec3 u_ambient = vec3(0.3, 0.3, 0.4);
+#endif
 
 layout(location = 0) out vec3 v_pos_object;
 layout(location = 1) out vec3 v_normal_object;

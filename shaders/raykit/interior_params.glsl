@@ -77,4 +77,66 @@ RK_INLINE rk_im_window_params rk_im_window_params_default()
     return p;
 }
 
+/// rk_im_building_frame: the per-frame values of the sample building material
+/// (samples/common/interior_building.frag) besides rk_im_window_params, for its uniform-block form
+/// (RK_IM_BUILDING_BLOCK 1: Vulkan, OpenGL SPIR-V, and HLSL / MSL through SPIRV-Cross). The
+/// loose-uniform form reads the same values from u_camera_world, u_facade_color and so on.
+struct rk_im_building_frame {
+    vec3 camera_world;      // camera position, world space
+    float env_guard_scale;  // RK_IM_REFLECTION 1: the atlas's guard scale (rk_dual_paraboloid_guard_scale)
+    vec3 facade_color;      // procedural facade albedo (RK_IM_BUILDING_FACADE 0)
+    float env_lod_bias;     // RK_IM_REFLECTION 1: LOD bias of the environment lookup
+    vec3 frame_color;       // window frames (RK_IM_BUILDING_FACADE 0)
+    float exposure;         // multiplies the output colour
+    vec3 sky_color;         // RK_IM_REFLECTION 0: the colour the glass reflects
+    float reinhard_white;   // RK_IM_BUILDING_OUTPUT 1 with RK_TONEMAP_OPERATOR 1
+    vec2 window_size;       // window extent as a fraction of the room face (RK_IM_BUILDING_FACADE 0)
+};
+
+/// rk_im_building_vertex: the vertex stage's values (samples/common/interior_building.vert) in its
+/// uniform-block form: the model and view-projection matrices, the camera, the facade uv scale
+/// and the sun light of the facade.
+struct rk_im_building_vertex {
+    mat4 world_from_object;
+    mat4 clip_from_world;
+    vec3 camera_world;
+    vec3 sun_dir;           // world, towards the sun (any length)
+    vec3 sun_color;
+    vec3 ambient;
+    vec2 uv_scale;          // facade uv multiplier (the thesis's uvMultiplier)
+};
+
+/// rk_im_building_frame_default: the loose uniforms' defaults of interior_building.frag (camera at
+/// the origin, sky colour (0.35, 0.45, 0.6), exposure 1, Reinhard white 4). Cost: field stores.
+RK_INLINE rk_im_building_frame rk_im_building_frame_default()
+{
+    rk_im_building_frame f;
+    f.camera_world = vec3(0.0f);
+    f.env_guard_scale = 1.0f;
+    f.facade_color = vec3(0.55f, 0.5f, 0.45f);
+    f.env_lod_bias = 0.0f;
+    f.frame_color = vec3(0.12f);
+    f.exposure = 1.0f;
+    f.sky_color = vec3(0.35f, 0.45f, 0.6f);
+    f.reinhard_white = 4.0f;
+    f.window_size = vec2(0.55f, 0.5f);
+    return f;
+}
+
+/// rk_im_building_vertex_default: the loose uniforms' defaults of interior_building.vert (identity
+/// matrices, camera at the origin, sun (0.5, 0.33166, 0.8) of colour (1, 1, 0.9), ambient
+/// (0.3, 0.3, 0.4), uv scale 1). Cost: field stores.
+RK_INLINE rk_im_building_vertex rk_im_building_vertex_default()
+{
+    rk_im_building_vertex v;
+    v.world_from_object = mat4(1.0f);
+    v.clip_from_world = mat4(1.0f);
+    v.camera_world = vec3(0.0f);
+    v.sun_dir = vec3(0.5f, 0.33166f, 0.8f);
+    v.sun_color = vec3(1.0f, 1.0f, 0.9f);
+    v.ambient = vec3(0.3f, 0.3f, 0.4f);
+    v.uv_scale = vec2(1.0f);
+    return v;
+}
+
 #endif  // RK_INTERIOR_PARAMS_GLSL

@@ -15,7 +15,9 @@
 #include "parity.hpp"
 #include "raykit/interior_compose.hpp"
 #include "raykit/interior_features.hpp"
+#include "raykit/gpu_layout.hpp"
 #include "raykit/interior_furniture.hpp"
+#include "raykit/interior_params.hpp"
 #include "raykit/interior_surface.hpp"
 #include "raykit/shader_source.hpp"
 
@@ -395,6 +397,7 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
     struct Shot {
         vec3 win, ext;
         long covered = 0, bad = 0;
+        std::vector<float> image;
     };
     auto render = [&](const std::vector<ShaderDefine>& defs, const std::function<void(GLuint)>& extra, Shot& out) {
         std::string vs, fs;
@@ -408,6 +411,35 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
             return false;
         }
         glUseProgram(prog);
+        bool block = false;
+        for (const ShaderDefine& d : defs) block = block || (d.name == "RK_IM_BUILDING_BLOCK" && d.value == "1");
+        GLuint ubo[2] = {0, 0};
+        if (block) {
+            // The uniform-block form: the same values, packed with raykit::gpu_pack (std140).
+            rk_im_window_params prm = rk_im_window_params_default();
+            prm.lit_probability = 1.0f;
+            prm.light_warm = prm.light_cool = vec3(1.0f);
+            prm.light_level = glm::vec2(1.0f);
+            prm.fade_range = glm::vec2(1e4f, 2e4f);
+            prm.tint_amount = 0.0f;
+            prm.variants = 2.0f;
+            prm.time = 1.25f;
+            rk_im_building_frame frame = rk_im_building_frame_default();
+            frame.camera_world = cam;
+            frame.sky_color = vec3(0.0f);
+            rk_im_building_vertex vert = rk_im_building_vertex_default();
+            vert.clip_from_world = vp;
+            vert.camera_world = cam;
+            const size_t a = gpu_size<rk_im_window_params>(GpuLayout::std140);
+            std::vector<uint8_t> frag_block(a + gpu_size<rk_im_building_frame>(GpuLayout::std140));
+            gpu_pack(prm, GpuLayout::std140, frag_block.data());
+            gpu_pack(frame, GpuLayout::std140, frag_block.data() + a);  // a is a multiple of 16
+            const std::vector<uint8_t> vert_block = gpu_pack(vert, GpuLayout::std140);
+            ubo[0] = rkgl::make_buffer(frag_block.size(), frag_block.data());
+            ubo[1] = rkgl::make_buffer(vert_block.size(), vert_block.data());
+            glBindBufferBase(GL_UNIFORM_BUFFER, 8, ubo[0]);
+            glBindBufferBase(GL_UNIFORM_BUFFER, 9, ubo[1]);
+        }
         auto loc = [&](const char* n) { return glGetUniformLocation(prog, n); };
         const glm::mat4 id(1.0f);
         glUniformMatrix4fv(loc("u_world_from_object"), 1, GL_FALSE, &id[0][0]);
@@ -433,8 +465,10 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
         glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, img.data());
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glDeleteProgram(prog);
+        if (block) glDeleteBuffers(2, ubo);
         EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
         out = Shot{};
+        out.image = img;
         for (size_t i = 0; i < img.size(); i += 4) {
             if (img[i + 3] < 0.0f) continue;  // background
             ++out.covered;
@@ -479,6 +513,21 @@ TEST(GpuSmoke, InteriorBuildingMaterial)
             expect_near3(shot.win, additive ? inside : (1.0f - R) * tint * inside, "window pixel");
             expect_near3(shot.ext, exterior, "facade pixel");
         }
+    }
+    // The uniform-block form (RK_IM_BUILDING_BLOCK 1, the SPIR-V / HLSL / MSL one) renders the same
+    // image as the loose uniforms, bit for bit, for every variant: the packed blocks hold the same
+    // values at the offsets the driver reads.
+    for (std::vector<ShaderDefine> defs : variants) {
+        SCOPED_TRACE("block form of " + variant_name(defs));
+        Shot loose, blocked;
+        if (!render(defs, nullptr, loose)) continue;
+        defs.push_back({"RK_IM_BUILDING_BLOCK", "1"});
+        if (!render(defs, nullptr, blocked)) continue;
+        ASSERT_EQ(loose.image.size(), blocked.image.size());
+        long differ = 0;
+        for (size_t i = 0; i < loose.image.size(); ++i) differ += loose.image[i] == blocked.image[i] ? 0 : 1;
+        EXPECT_EQ(differ, 0) << "of " << loose.image.size() << " channels";
+        EXPECT_GT(blocked.covered, W * H / 4);
     }
     // Each feature's effect, with uniforms that make it visible.
     {
