@@ -55,6 +55,18 @@ int main(int argc, char** argv)
         std::printf("VARIANT mode2 not in the output name: %s\n", names[3].c_str());
         return 1;
     }
-    std::printf("consumer ok: SPIR-V for Vulkan and OpenGL, depfile lists raykit includes, 4 distinct variants\n");
+    // The sample interior material (both stages, OpenGL and Vulkan).
+    if (argc != 11) {
+        std::printf("expected 4 material SPIR-V files, got %d arguments\n", argc - 7);
+        return 1;
+    }
+    for (int i = 7; i < 11; ++i) {
+        if (!is_spirv(argv[i])) {
+            std::printf("not SPIR-V: %s\n", argv[i]);
+            return 1;
+        }
+    }
+    std::printf("consumer ok: SPIR-V for Vulkan and OpenGL, depfile lists raykit includes, 4 distinct variants, "
+                "the interior material for both\n");
     return 0;
 }
