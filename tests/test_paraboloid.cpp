@@ -704,6 +704,65 @@ TEST(Bake, MipsAreBoxFiltersAndNeverMixHalves)
     EXPECT_EQ(cube_from_dual_paraboloid(DualParaboloidMap{}, 8, 2, &st).size, 0);
 }
 
+// The seam cross-fade (DualParaboloidBakeOptions::seam_fade): with a band of 2 level-0 texels the
+// lookup is continuous across z = 0 (the jump h^2 / 4 of the hard seam goes to float noise), the
+// error inside the band stays at the size of the error beside it, and away from the band the
+// faded atlas behaves as the plain one. Issue 13 item 6.
+TEST(Bake, SeamFadeRemovesTheJump)
+{
+    const EnvCubeMap cube = bake_cube_map(96, identity_env, 1);
+    DualParaboloidBakeOptions o;
+    o.half_size = 64;
+    o.max_lod = 2.0f;
+    const DualParaboloidMap hard = bake_dual_paraboloid(cube, o);
+    o.seam_fade = 2.0f;
+    const DualParaboloidMap soft = bake_dual_paraboloid(cube, o);
+    EXPECT_EQ(soft.guard_scale, 0.875f);  // 1 - 2 (2 + 2) / 64: the fade widens the guard
+    EXPECT_FLOAT_EQ(soft.seam_band, 2.0f * 2.0f / (0.875f * 64.0f));
+    EXPECT_EQ(hard.seam_band, 0.0f);
+    const int n_phi = 2048;
+    for (float lod : {0.0f, 1.0f, 1.5f, 2.0f}) {
+        double jump_hard = 0, jump_soft = 0, band_err = 0, beside_err = 0, step_max = 0;
+        for (int k = 0; k < n_phi; ++k) {
+            const double phi = 2.0 * kPi * k / n_phi;
+            const float c = static_cast<float>(std::cos(phi)), s = static_cast<float>(std::sin(phi));
+            auto dir = [&](double z) {
+                const double q = std::sqrt(1.0 - z * z);
+                return vec3(static_cast<float>(q * c), static_cast<float>(q * s), static_cast<float>(z));
+            };
+            jump_hard = std::max(jump_hard, angle_between(sample_dual_paraboloid(hard, dir(1e-6), lod),
+                                                          sample_dual_paraboloid(hard, dir(-1e-6), lod)));
+            jump_soft = std::max(jump_soft, angle_between(sample_dual_paraboloid(soft, dir(1e-6), lod),
+                                                          sample_dual_paraboloid(soft, dir(-1e-6), lod)));
+            // Along the meridian through the band: the error, and the largest change between
+            // neighbouring samples 1/64 of the band apart (a jump would show as one big step).
+            const double b = soft.seam_band;
+            vec3 prev = sample_dual_paraboloid(soft, dir(-1.5 * b), lod), prev_d = dir(-1.5 * b);
+            for (int i = 1; i <= 192; ++i) {
+                const double z = -1.5 * b + 3.0 * b * i / 192.0;
+                const vec3 d = dir(z);
+                const vec3 got = sample_dual_paraboloid(soft, d, lod);
+                const D3 want{d.x, d.y, d.z};
+                const double e = angle_between(got, want);
+                (std::fabs(z) < b ? band_err : beside_err) = std::max(std::fabs(z) < b ? band_err : beside_err, e);
+                // The content is the direction itself: a step beyond the directions' own step is
+                // a discontinuity.
+                step_max = std::max(step_max, angle_between(got, D3{prev.x, prev.y, prev.z}) -
+                                                  angle_between(d, D3{prev_d.x, prev_d.y, prev_d.z}));
+                prev = got;
+                prev_d = d;
+            }
+        }
+        std::printf("seam fade, lod %.2f: jump hard %.3g -> faded %.3g rad; error in the band %.3g, beside it %.3g; "
+                    "largest step along the meridian beyond the directions' own %.3g\n",
+                    static_cast<double>(lod), jump_hard, jump_soft, band_err, beside_err, step_max);
+        EXPECT_LT(jump_soft, 3e-6) << lod;  // continuous: the probes themselves are 2e-6 rad apart
+        EXPECT_GT(jump_hard, 100 * jump_soft) << lod;
+        EXPECT_LE(band_err, 1.25 * beside_err) << lod;  // the mix of two errors of opposite sign
+        EXPECT_LT(step_max, 0.5 * jump_hard) << lod;
+    }
+}
+
 TEST(Bake, SeamIsContinuous)
 {
     // Lookups of a dual-paraboloid map baked from a self-direction cube (error = the angle between

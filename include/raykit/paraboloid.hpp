@@ -86,6 +86,9 @@ struct DualParaboloidMap {
     int half_size = 0;
     float guard_scale = 1.0f;
     float max_lod = 0.0f;
+    /// The seam cross-fade's half-width for rk_dual_paraboloid_seam_weight (z, or st at the rim):
+    /// seam_fade level-0 texels, 2 seam_fade / (guard_scale H); 0 when baked without a fade.
+    float seam_band = 0.0f;
     std::vector<EnvImage> levels;
 };
 
@@ -319,13 +322,18 @@ struct DualParaboloidBakeOptions {
     /// rk_paraboloid_frame(N, up, +1) for a window): a texel's world direction is frame * local.
     /// Look up with the local direction world * frame. Identity: the map is in world space.
     mat3 frame = mat3(1.0f);
+    /// Seam cross-fade width in level-0 texels (0: none, the thesis's hard seam). The guard grows by
+    /// as much so that both halves can be read across the seam at every LOD up to max_lod; the map's
+    /// seam_band is the matching band for rk_dual_paraboloid_seam_weight and the seamless lookups.
+    float seam_fade = 0.0f;
 };
 
 /// The guard scale bake_dual_paraboloid uses for these options:
-/// rk_dual_paraboloid_guard_scale(H, rk_paraboloid_filter_footprint(max_lod)).
+/// rk_dual_paraboloid_guard_scale(H, rk_paraboloid_filter_footprint(max_lod) + seam_fade).
 inline float dual_paraboloid_guard_scale(const DualParaboloidBakeOptions& o)
 {
-    return rk_dual_paraboloid_guard_scale(static_cast<float>(o.half_size), rk_paraboloid_filter_footprint(o.max_lod));
+    const float fade = o.seam_fade > 0.0f ? std::min(o.seam_fade, 65536.0f) : 0.0f;
+    return rk_dual_paraboloid_guard_scale(static_cast<float>(o.half_size), rk_paraboloid_filter_footprint(o.max_lod) + fade);
 }
 
 /// Bakes a dual-paraboloid atlas from a function of direction `env(vec3 unit_dir) -> vec3`: every
@@ -363,6 +371,9 @@ DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptio
     map.half_size = o.half_size;
     map.max_lod = o.max_lod;
     map.guard_scale = dual_paraboloid_guard_scale(o);
+    if (o.seam_fade > 0.0f) {
+        map.seam_band = 2.0f * std::min(o.seam_fade, 65536.0f) / (map.guard_scale * static_cast<float>(o.half_size));
+    }
     const int ssi = o.supersample == 0 ? 4 : o.supersample;
     const float ss = static_cast<float>(ssi);
     const int w = 2 * o.half_size, h = o.half_size;
@@ -436,20 +447,33 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// 2.4e-3 rad at LOD 0, 1, 2, below the band one texel further in (1.7e-4, 6.4e-4, 2.8e-3; the
 /// guard band's content is right). Not continuous across the seam: the halves are mirror images,
 /// so their bilinear errors across z = 0 have opposite signs and the lookup jumps by up to
-/// h^2 / 4 rad (2.7e-4, 1.1e-3, 4.4e-3: twice either side's error, 1.6 times the band's; only a
-/// cross-fade of the halves near z = 0 would remove it) (Bake.SeamIsContinuous).
-/// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD).
+/// h^2 / 4 rad (2.7e-4, 1.1e-3, 4.4e-3: twice either side's error, 1.6 times the band's)
+/// (Bake.SeamIsContinuous). A map baked with DualParaboloidBakeOptions::seam_fade cross-fades the
+/// halves over |z| < map.seam_band (as rk_dual_paraboloid_sample_lod_seamless): with 2 texels
+/// (g 0.875 instead of 0.9375 for H = 64, max_lod 2: 7 % fewer texels across the disk) the jump
+/// falls to the probes' own spacing (2.3e-6 rad at every LOD), and the error inside the band
+/// (1.9e-4, 6.7e-4, 2.6e-3 rad at LOD 0, 1, 2) stays below the error beside it (1.9e-4, 7.2e-4,
+/// 2.8e-3) (Bake.SeamFadeRemovesTheJump).
+/// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD); twice
+/// that inside a fade band.
 inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)
 {
     if (map.levels.empty()) return vec3(0.0f);
-    const vec2 uv = rk_dual_paraboloid_uv(dir, map.guard_scale);
     const float top = static_cast<float>(map.levels.size() - 1);
     const float l = std::clamp(lod, 0.0f, std::min(map.max_lod, top));
     const float l0 = std::floor(l);
     const std::size_t i0 = static_cast<std::size_t>(l0);
-    const vec3 a = sample_image_bilinear(map.levels[i0], uv);
-    if (l == l0) return a;
-    return glm::mix(a, sample_image_bilinear(map.levels[i0 + 1], uv), l - l0);
+    auto at = [&](vec2 uv) {
+        const vec3 a = sample_image_bilinear(map.levels[i0], uv);
+        return l == l0 ? a : glm::mix(a, sample_image_bilinear(map.levels[i0 + 1], uv), l - l0);
+    };
+    // With a seam fade (map.seam_band > 0), the two halves are mixed across the seam, as
+    // rk_dual_paraboloid_sample_lod_seamless does.
+    const float w = rk_dual_paraboloid_seam_weight(dir, map.seam_band);
+    if (w >= 1.0f || w <= 0.0f) return at(rk_dual_paraboloid_uv_half(dir, map.guard_scale, w > 0.0f ? 1.0f : -1.0f));
+    const vec3 plus = at(rk_dual_paraboloid_uv_half(dir, map.guard_scale, 1.0f));
+    const vec3 minus = at(rk_dual_paraboloid_uv_half(dir, map.guard_scale, -1.0f));
+    return minus * (1.0f - w) + plus * w;
 }
 
 /// A single square paraboloid map (the thesis's per-window map, Fahlén 2005 §3.2.3) of size x size

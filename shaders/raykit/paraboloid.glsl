@@ -297,6 +297,36 @@ RK_INLINE vec2 rk_dual_paraboloid_uv(vec3 dir, float guard_scale)
     return vec2(0.5f * uv.x + (h > 0.0f ? 0.0f : 0.5f), uv.y);
 }
 
+/// rk_dual_paraboloid_uv_half: atlas coordinates of `dir` in a given half (hemi > -RK_FLT_MIN: the
+/// left, +z half; else the right one), whatever the sign of dir.z: a direction just across the seam
+/// lands in that half's guard band (|st| slightly above 1). The seam cross-fade reads both halves
+/// with it. Equal to rk_dual_paraboloid_uv when hemi = rk_dual_paraboloid_hemi(dir).
+/// Max error: 1e-7 in uv within the half's guard band; deeper into the other hemisphere |st| grows
+/// as 1 / (1 - |z|) and the rounding with it (relative error ~1e-5 of st near the antipode).
+/// Cost: rk_paraboloid_encode + 4 flops.
+RK_INLINE vec2 rk_dual_paraboloid_uv_half(vec3 dir, float guard_scale, float hemi)
+{
+    float h = rk_paraboloid_hemi_sign(hemi);
+    vec2 uv = rk_paraboloid_uv(rk_paraboloid_encode(dir, h), guard_scale);
+    return vec2(0.5f * uv.x + (h > 0.0f ? 0.0f : 0.5f), uv.y);
+}
+
+/// rk_dual_paraboloid_seam_weight: the weight of the +z half in the seam cross-fade: with z the
+/// normalised direction's z, 1 for z >= band, 0 for z <= -band, 0.5 + 0.5 z / band between (near
+/// the rim |d st| = |d z|, so band is the fade's half-width in st too). band <= 0 (or NaN): the
+/// hard switch of rk_dual_paraboloid_uv (1 for z > -RK_FLT_MIN, else 0). Mixing the two halves'
+/// lookups with it removes the jump at the seam, where the halves' bilinear errors have opposite
+/// signs; the atlas's guard must then cover band beyond the rim at every LOD used (bake with
+/// DualParaboloidBakeOptions::seam_fade). Exact up to 2 roundings. Cost: a normalisation, 2 flops.
+RK_INLINE float rk_dual_paraboloid_seam_weight(vec3 dir, float band)
+{
+    if (!(band > 0.0f)) {
+        return rk_dual_paraboloid_hemi(dir) > 0.0f ? 1.0f : 0.0f;
+    }
+    vec3 n = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, 1.0f));
+    return clamp(0.5f + 0.5f * n.z / min(band, 1.0f), 0.0f, 1.0f);
+}
+
 /// rk_dual_paraboloid_uv_differential: the change of rk_dual_paraboloid_uv for a change d_dir of
 /// dir, with the hemisphere fixed by dir: the derivative a textureGrad lookup needs. Continuous
 /// across the seam (both halves have the same texel density at the rim), unlike dFdx(uv), which

@@ -31,6 +31,24 @@ RK_INLINE vec4 rk_dual_paraboloid_sample_lod(sampler2D atlas, vec3 dir, float gu
     return textureLod(atlas, rk_dual_paraboloid_uv(dir, guard_scale), clamp(lod, 0.0f, max(max_lod, 0.0f)));
 }
 
+/// rk_dual_paraboloid_sample_lod_seamless: rk_dual_paraboloid_sample_lod with the seam cross-faded
+/// over |z| < band (rk_dual_paraboloid_seam_weight; DualParaboloidMap::seam_band for an atlas
+/// baked with DualParaboloidBakeOptions::seam_fade): inside the band both halves are read and
+/// mixed, so the lookup is continuous across z = 0 instead of jumping by about h^2 / 4 rad.
+/// band <= 0 is rk_dual_paraboloid_sample_lod. Cost: 1 textureLod, 2 inside the band (a branch).
+RK_INLINE vec4 rk_dual_paraboloid_sample_lod_seamless(sampler2D atlas, vec3 dir, float guard_scale, float lod,
+                                                      float max_lod, float band)
+{
+    float l = clamp(lod, 0.0f, max(max_lod, 0.0f));
+    float w = rk_dual_paraboloid_seam_weight(dir, band);
+    if (w >= 1.0f || w <= 0.0f) {
+        return textureLod(atlas, rk_dual_paraboloid_uv_half(dir, guard_scale, w > 0.0f ? 1.0f : -1.0f), l);
+    }
+    vec4 plus = textureLod(atlas, rk_dual_paraboloid_uv_half(dir, guard_scale, 1.0f), l);
+    vec4 minus = textureLod(atlas, rk_dual_paraboloid_uv_half(dir, guard_scale, -1.0f), l);
+    return minus * (1.0f - w) + plus * w;
+}
+
 /// rk_dual_paraboloid_sample_grad: the atlas at direction dir with the LOD the hardware derives
 /// from the screen-space change of dir (dFdx/dFdy of dir through the exact Jacobian), plus
 /// lod_bias levels (the thesis's per-pixel bias from the angle of incidence: the gradients are

@@ -90,6 +90,17 @@ std::vector<parity::Case> paraboloid_cases()
         RK_PARITY("rk_dual_paraboloid_uv", P, (any(), any(), any(), guard()), 2,
                   vec2 r = rk_dual_paraboloid_uv(vec3(a[0], a[1], a[2]), a[3]);
                   o[0] = r.x; o[1] = r.y;),
+        // Far into the other hemisphere |st| grows as 1 / (1 - |z|) and so does the encoding's
+        // rounding (the fade reads it only within the band beyond the rim): a relative tolerance.
+        [&] {
+            parity::Case c = RK_PARITY("rk_dual_paraboloid_uv_half", P, (any(), any(), any(), guard(), any()), 2,
+                                       vec2 r = rk_dual_paraboloid_uv_half(vec3(a[0], a[1], a[2]), a[3], a[4]);
+                                       o[0] = r.x; o[1] = r.y;);
+            c.rel_tol = 1e-4;
+            return c;
+        }(),
+        RK_PARITY("rk_dual_paraboloid_seam_weight", P, (any(), any(), any(), dom::range(-0.1f, 0.2f)), 1,
+                  o[0] = rk_dual_paraboloid_seam_weight(vec3(a[0], a[1], a[2]), a[3]);),
         RK_PARITY("rk_dual_paraboloid_uv_differential", P, (any(), any(), any(), any(), any(), any(), guard()), 2,
                   vec3 v = vec3(a[0], a[1], a[2]);
                   vec3 dv = clamp(vec3(a[3], a[4], a[5]), vec3(-4.0f), vec3(4.0f)) *
@@ -435,10 +446,12 @@ TEST(GpuParity, DualParaboloidSampling)
         "layout(binding = 0) uniform sampler2D rk_atlas;\n"
         "layout(location = 0) uniform float rk_g;\nlayout(location = 1) uniform float rk_lod;\n"
         "layout(location = 2) uniform float rk_max_lod;\nlayout(location = 3) uniform int rk_mode;\n"
+        "layout(location = 4) uniform float rk_band;\n"
         "layout(location = 0) out vec4 rk_color;\n"
         "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n  vec3 d = texelFetch(rk_dirs, p, 0).xyz;\n"
         "  if (rk_mode == 0) rk_color = rk_dual_paraboloid_sample_lod(rk_atlas, d, rk_g, rk_lod, rk_max_lod);\n"
         "  else if (rk_mode == 1) rk_color = rk_dual_paraboloid_sample_grad(rk_atlas, d, rk_g, rk_lod);\n"
+        "  else if (rk_mode == 3) rk_color = rk_dual_paraboloid_sample_lod_seamless(rk_atlas, d, rk_g, rk_lod, rk_max_lod, rk_band);\n"
         "  else rk_color = texture(rk_atlas, rk_dual_paraboloid_uv(d, rk_g));\n}\n";
     const GLuint prog = fullscreen_program(fs, "sampling.frag");
     GLuint vao = 0;
@@ -521,6 +534,38 @@ TEST(GpuParity, DualParaboloidSampling)
     const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
     EXPECT_LT(e_biased, llvmpipe ? 0.03 : 0.3);
     EXPECT_LE(e_biased_seam, e_biased);
+    // The seam cross-fade: an atlas baked with a fade of 2 texels, read by
+    // rk_dual_paraboloid_sample_lod_seamless against its CPU mirror (sample_dual_paraboloid, which
+    // mixes the halves the same way). The grid crosses the seam, so the band is exercised.
+    {
+        DualParaboloidBakeOptions of = o;
+        of.seam_fade = 2.0f;
+        const DualParaboloidMap faded = bake_dual_paraboloid_fn(checker_env, of);
+        ASSERT_GT(faded.seam_band, 0.0f);
+        for (int l = 0; l < levels; ++l) {
+            const EnvImage& img = faded.levels[static_cast<size_t>(l)];
+            glTextureSubImage2D(atlas, l, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT, img.rgb.data());
+        }
+        glUniform1f(0, faded.guard_scale);
+        glUniform1f(4, faded.seam_band);
+        long in_band = 0;
+        for (const vec3& d : dv) {
+            const float wgt = rk_dual_paraboloid_seam_weight(d, faded.seam_band);
+            in_band += wgt > 0.0f && wgt < 1.0f ? 1 : 0;
+        }
+        for (float l : {0.0f, 1.0f, 2.0f}) {
+            const std::vector<float> px = render(3, l);
+            double e = 0;
+            for (size_t i = 0; i < dv.size(); ++i) {
+                const vec3 want = sample_dual_paraboloid(faded, dv[i], l);
+                for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(static_cast<double>(px[4 * i + static_cast<size_t>(c)]) - want[c]));
+            }
+            std::printf("[parity] rk_dual_paraboloid_sample_lod_seamless at lod %.0f (%ld of %zu directions in the fade band) "
+                        "vs sample_dual_paraboloid: max abs %.3g\n", static_cast<double>(l), in_band, dv.size(), e);
+            EXPECT_LT(e, 2e-3) << "lod " << l;
+        }
+        EXPECT_GT(in_band, static_cast<long>(dv.size() / 4));
+    }
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
     glDeleteTextures(1, &dir_tex);
