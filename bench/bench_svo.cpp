@@ -170,7 +170,9 @@ raykit::SvoBuildOptions options(int depth, int threads, uint32_t attributes)
     raykit::SvoBuildOptions o;
     o.depth = depth;
     o.threads = threads;
-    o.attributes = attributes;
+    // RK_SVO_ATTR_SHARED_SUB in a case's attributes selects the compact level of detail.
+    o.attributes = attributes & (RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL);
+    o.shared_sub_attributes = (attributes & RK_SVO_ATTR_SHARED_SUB) != 0;
     return o;
 }
 
@@ -339,6 +341,10 @@ void register_svo()
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::figure())});
     meshes.push_back({"figure_colour", "figure() with the colour stream only (what the thesis's format stores)", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::figure()), RK_SVO_ATTR_COLOR});
+    meshes.push_back({"figure_colour_shared",
+                      "figure() with the colour stream only and shared sub-node attributes (the compact level of detail: a "
+                      "stop at level depth-1 reads its brick's colour)", 11,
+                      std::make_shared<const raykit::SvoMeshData>(rkmesh::figure()), RK_SVO_ATTR_COLOR | RK_SVO_ATTR_SHARED_SUB});
     meshes.push_back({"menger2", "menger_sponge(2): unit cube, 2,112 triangles, 400 square holes, axis-aligned faces", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::menger_sponge(2))});
     meshes.push_back({"uvsphere256", "uv_sphere(256, 137): unit sphere, 69,632 triangles (the ~70k case)", 11,

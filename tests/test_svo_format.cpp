@@ -429,6 +429,7 @@ TEST(SvoCodec, BrickAndDescriptorHelpersMatchBitLoops)
             for (uint32_t j = 0; j < bit; ++j) rank += static_cast<uint32_t>((m >> j) & 1ull);
             ASSERT_EQ(rk_svo_brick_rank(mv, bit), rank);
             ASSERT_EQ(rk_svo_brick_voxel_attr(base, mv, bit, 2u), base + popcount64(sub_ref) + rank);
+            ASSERT_EQ(rk_svo_brick_voxel_attr(base | RK_SVO_BRICK_SHARED_SUB, mv, bit, 2u), base + rank);
             if (bit < 8) {
                 // 2^3 bricks (depth 1): bits 0..7, no sub-nodes.
                 const glm::uvec2 m8(mv.x & 0xFFu, 0u);
@@ -437,7 +438,9 @@ TEST(SvoCodec, BrickAndDescriptorHelpersMatchBitLoops)
                 ASSERT_EQ(rk_svo_brick_voxel_attr(base, m8, bit, 1u), base + r8);
                 uint32_t sub_before = 0;
                 for (uint32_t s = 0; s < bit; ++s) sub_before += (sub_ref >> s) & 1u;
-                ASSERT_EQ(rk_svo_brick_sub_attr(base, mv, bit), base + sub_before);
+                ASSERT_EQ(rk_svo_brick_sub_attr(base, mv, bit, 77u), base + sub_before);
+                // Shared sub-node attributes: the brick's own index, and voxels right at base.
+                ASSERT_EQ(rk_svo_brick_sub_attr(base | RK_SVO_BRICK_SHARED_SUB, mv, bit, 77u), 77u);
             }
         }
     }

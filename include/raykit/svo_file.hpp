@@ -298,8 +298,8 @@ inline bool parse_header(const uint8_t* data, size_t avail, uint64_t size, Heade
     h.file_size = get_u64(data + kOffFileSize);
     for (uint32_t l = 0; l <= h.depth; ++l) h.level_nodes[l] = get_u64(data + kOffLevelNodes + 8 * l);
     h.payload_crc = get_u32(data + hs - 8);
-    if (h.attributes & ~uint32_t(RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL))
-        return st.fail(SvoError::corrupt, "svo_load: attributes (byte 24) is " + hex(h.attributes) + ", only bits 0..2 are defined");
+    if (h.attributes & ~uint32_t(RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL | RK_SVO_ATTR_SHARED_SUB))
+        return st.fail(SvoError::corrupt, "svo_load: attributes (byte 24) is " + hex(h.attributes) + ", only bits 0..3 are defined");
     // Counts: all u32 or range-checked u64, so the sums and products below stay far from 2^64.
     const uint64_t words = uint64_t(h.desc_words) + 2u * uint64_t(h.brick_count);
     if (words + h.brick_count > k2p32)
@@ -463,8 +463,10 @@ inline bool svo_validate(const SvoTree& t, SvoStatus& st)
     if (t.brick_levels != b)
         return bad("brick_levels is " + num(t.brick_levels) + ", depth " + num(depth) + " needs " + num(b));
     if (t.pointer_bits < 4 || t.pointer_bits > 23) return bad("pointer_bits is " + num(t.pointer_bits) + ", outside 4..23");
-    if (t.attributes & ~uint32_t(RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL))
-        return bad("attributes is " + hex(t.attributes) + ", only bits 0..2 are defined");
+    if (t.attributes & ~uint32_t(RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL | RK_SVO_ATTR_SHARED_SUB))
+        return bad("attributes is " + hex(t.attributes) + ", only bits 0..3 are defined");
+    const bool shared = (t.attributes & RK_SVO_ATTR_SHARED_SUB) != 0;
+    if (shared && b != 2u) return bad("RK_SVO_ATTR_SHARED_SUB is set but depth " + num(depth) + " has no sub-node level in its bricks");
     if (!std::isfinite(t.root_size) || !(t.root_size > 0.0f))
         return bad("root_size is " + std::to_string(t.root_size) + ", must be finite and > 0");
     for (int k = 0; k < 3; ++k)
@@ -602,11 +604,16 @@ inline bool svo_validate(const SvoTree& t, SvoStatus& st)
             return bad(where() + ": mask " + hex((uint64_t(hi) << 32) | lo) + " sets bits above 7 in a 2^3 brick (depth 1)");
         const uint32_t subs = b == 2u ? popcount32(rk_svo_brick_submask(uvec2(lo, hi))) : 0u;
         const uint32_t vox = popcount32(lo) + popcount32(hi);
-        if (t.brick_base[j] != run)
-            return bad("brick_base[" + num(j) + "] is " + num(t.brick_base[j]) + ", expected " + num(run) +
-                       " (desc_words + brick_count + the sub-nodes and voxels of the bricks before)");
-        run += subs + vox;
-        if (run > k2p32) return st.fail(SvoError::too_large, "svo_validate: attribute indices exceed 2^32 at brick " + num(j));
+        // Shared sub-node attributes: every entry carries the flag, runs over voxels only, < 2^31.
+        const uint64_t want = run | (shared ? uint64_t(RK_SVO_BRICK_SHARED_SUB) : 0u);
+        if (t.brick_base[j] != want)
+            return bad("brick_base[" + num(j) + "] is " + hex(t.brick_base[j]) + ", expected " + hex(want) +
+                       (shared ? " (the shared-sub flag | desc_words + brick_count + the voxels of the bricks before)"
+                               : " (desc_words + brick_count + the sub-nodes and voxels of the bricks before)"));
+        run += (shared ? 0u : subs) + vox;
+        if (run > (shared ? (k2p32 >> 1) : k2p32))
+            return st.fail(SvoError::too_large, "svo_validate: attribute indices exceed 2^" + std::string(shared ? "31" : "32") +
+                                                    " at brick " + num(j));
         if (b == 2u) found[top + 1u] += subs;
         found[depth] += vox;
     }

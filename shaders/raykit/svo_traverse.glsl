@@ -359,7 +359,8 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
 
 /// rk_svo_trace_attr: the attribute index (into the color / normal / material streams) of what
 /// rk_svo_trace hit: the node's ordinal above the bricks, else brick_base[brick] plus its rank in
-/// the brick (rk_svo_brick_sub_attr, rk_svo_brick_voxel_attr). Domain: hit.hit is true.
+/// the brick (rk_svo_brick_sub_attr, rk_svo_brick_voxel_attr; a level-(depth-1) stop in a tree built
+/// with shared sub-node attributes gets the brick's). Domain: hit.hit is true.
 /// Cost: 1 word load inside a brick, none above.
 RK_INLINE uint rk_svo_trace_attr(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_hit hit)
 {
@@ -368,7 +369,7 @@ RK_INLINE uint rk_svo_trace_attr(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_
     if (hit.level <= top) return hit.node;
     uint base = RK_SVO_READ(buf, tree.brick_base_word + (hit.node - tree.desc_words));
     if (hit.level == tree.depth) return rk_svo_brick_voxel_attr(base, hit.brick_mask, hit.brick_bit, b);
-    return rk_svo_brick_sub_attr(base, hit.brick_mask, hit.brick_bit);
+    return rk_svo_brick_sub_attr(base, hit.brick_mask, hit.brick_bit, hit.node);
 }
 
 #endif  // RK_SVO_TRAVERSE_GLSL

@@ -52,17 +52,19 @@ TEST(GpuParity, SvoCodecs)
     cases.push_back(svo_case(RK_PARITY_X("rk_svo_unpack_normal", "raykit/svo_format.glsl", (u, u), 3,
                                          vec3 n = rk_svo_unpack_normal(RK_WORD(0, 1)); o[0] = n.x; o[1] = n.y; o[2] = n.z;)));
     exact.push_back({});
-    cases.push_back(svo_case(RK_PARITY_X("rk_svo_brick helpers", "raykit/svo_format.glsl", (u, u, u, u, u, u), 12,
+    cases.push_back(svo_case(RK_PARITY_X("rk_svo_brick helpers", "raykit/svo_format.glsl", (u, u, u, u, u, u), 16,
                                          uvec2 m = uvec2(RK_WORD(0, 1), RK_WORD(2, 3)); uint bit = uint(clamp(a[4], 0.0f, 1.0f) * 63.0f);
                                          uint sub = bit >> 3u; uint base = RK_WORD(5, 5) >> 4u;
                                          o[0] = rk_svo_brick_has(m, bit) ? 1.0f : 0.0f; o[1] = float(rk_svo_brick_rank(m, bit));
                                          o[2] = float(rk_svo_brick_submask(m)); o[3] = float(rk_svo_brick_voxel_count(m));
-                                         RK_EMIT_U(4, rk_svo_brick_voxel_attr(base, m, bit, 2u)); RK_EMIT_U(6, rk_svo_brick_sub_attr(base, m, sub));
+                                         RK_EMIT_U(4, rk_svo_brick_voxel_attr(base, m, bit, 2u)); RK_EMIT_U(6, rk_svo_brick_sub_attr(base, m, sub, 7u));
+                                         uint sbase = base | RK_SVO_BRICK_SHARED_SUB;
+                                         RK_EMIT_U(12, rk_svo_brick_voxel_attr(sbase, m, bit, 2u)); RK_EMIT_U(14, rk_svo_brick_sub_attr(sbase, m, sub, 7u));
                                          uvec3 cell = uvec3(RK_WORD(0, 0) & 1023u, RK_WORD(1, 1) & 1023u, RK_WORD(2, 2) & 1023u);
                                          o[8] = float(rk_svo_brick_bit(cell, 2u)); o[9] = float(rk_svo_brick_bit(cell, 1u));
                                          o[10] = float(rk_svo_child_index(cell, bit % 10u, 10u));
                                          o[11] = float(rk_svo_child_rank(RK_WORD(3, 3) & 255u, bit & 7u));)));
-    exact.push_back({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+    exact.push_back({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15});
     cases.push_back(svo_case(RK_PARITY_X("rk_svo_descriptor fields", "raykit/svo_format.glsl", (u, u, u, u), 8,
                                          uint d = RK_WORD(0, 1); uint ord = RK_WORD(2, 3) >> 2u; uint fw = RK_WORD(1, 2) >> 3u;
                                          o[0] = float(rk_svo_child_mask(d)); o[1] = rk_svo_is_far(d) ? 1.0f : 0.0f;

@@ -83,6 +83,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     t = SvoTree{};
     t.depth = depth;
     t.brick_levels = b;
+    const bool shared = opt.shared_sub_attributes && b == 2u;
     t.attributes = attributes;
     t.pointer_bits = pointer_bits;
     t.level_nodes.assign(depth + 1u, 0u);
@@ -205,6 +206,8 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
         t.level_nodes[top] = nb;
     }
     // Bricks: masks, brick bases; sub-node counts; attribute count.
+    if (shared) t.attributes |= RK_SVO_ATTR_SHARED_SUB;
+    const uint64_t attr_limit = shared ? (1ull << 31) : (1ull << 32);  // the top bit of brick_base flags
     uint64_t attr = desc_words + nb;
     {
         t.brick_base.resize(nb);
@@ -216,16 +219,16 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
             }
             t.words[desc_words + 2 * j] = lo;
             t.words[desc_words + 2 * j + 1] = hi;
-            t.brick_base[j] = static_cast<uint32_t>(attr);
+            t.brick_base[j] = static_cast<uint32_t>(attr) | (shared ? RK_SVO_BRICK_SHARED_SUB : 0u);
             const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(glm::uvec2(lo, hi)))) : 0u;
             if (b == 2) t.level_nodes[top + 1] += subs;
-            attr += subs + (brick_first[j + 1] - brick_first[j]);
-            if (attr >= (1ull << 32)) return st.fail(SvoError::too_large, "more than 2^32 attribute entries");
+            attr += (shared ? 0u : subs) + (brick_first[j + 1] - brick_first[j]);
+            if (attr >= attr_limit) return st.fail(SvoError::too_large, shared ? "more than 2^31 attribute entries (shared sub-node attributes)" : "more than 2^32 attribute entries");
         }
         t.level_nodes[depth] = leaves.size();
     }
     t.attr_count = attr;
-    const uint32_t streams = static_cast<uint32_t>(bitCount(attributes));
+    const uint32_t streams = static_cast<uint32_t>(bitCount(attributes & (RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL)));
     if (!mem.add(4ull * (streams * attr + nb), st, "packing the attributes")) return false;
     if (attributes & RK_SVO_ATTR_COLOR) t.color.assign(attr, 0u);
     if (attributes & RK_SVO_ATTR_NORMAL) t.normal.assign(attr, 0u);
@@ -238,8 +241,8 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
         const uint64_t j_end = std::min<uint64_t>(nb, (blk + 1) * block);
         for (uint64_t j = blk * block; j < j_end; ++j) {
             const glm::uvec2 m(t.words[desc_words + 2 * j], t.words[desc_words + 2 * j + 1]);
-            const uint64_t base = t.brick_base[j];
-            const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(m))) : 0u;
+            const uint64_t base = t.brick_base[j] & ~RK_SVO_BRICK_SHARED_SUB;
+            const uint32_t subs = b == 2 && !shared ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(m))) : 0u;
             // Sums of the brick's level-(depth-1) nodes (b = 2; each over up to 8 voxels) or of its
             // voxels (b = 1), then the brick.
             Sum brick;
@@ -251,7 +254,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
                     put_leaf_attr(t, base + subs + (i - brick_first[j]), leaves[i]);
                     p.add_leaf(leaves[i]);
                 }
-                if (b == 2) put_attr(t, base + np, p);
+                if (b == 2 && !shared) put_attr(t, base + np, p);
                 ++np;
                 brick.add(p);
             }
