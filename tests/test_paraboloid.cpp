@@ -718,7 +718,11 @@ TEST(Bake, SeamFadeRemovesTheJump)
     o.seam_fade = 2.0f;
     const DualParaboloidMap soft = bake_dual_paraboloid(cube, o);
     EXPECT_EQ(soft.guard_scale, 0.875f);  // 1 - 2 (2 + 2) / 64: the fade widens the guard
-    EXPECT_FLOAT_EQ(soft.seam_band, 2.0f * 2.0f / (0.875f * 64.0f));
+    const double r = 1.0 + 2.0 * 2.0 / (0.875 * 64.0);  // the guard's outer st radius used by the fade
+    EXPECT_NEAR(soft.seam_band, (r * r - 1.0) / (r * r + 1.0), 1e-7);
+    // The far edge of the band, read in the other half, lands exactly on that radius.
+    const double band = soft.seam_band;
+    EXPECT_NEAR(std::sqrt((1.0 + band) / (1.0 - band)), r, 1e-6);
     EXPECT_EQ(hard.seam_band, 0.0f);
     const int n_phi = 2048;
     for (float lod : {0.0f, 1.0f, 1.5f, 2.0f}) {

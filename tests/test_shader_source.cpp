@@ -223,6 +223,45 @@ TEST(ShaderSource, UndecidableConditionsKeepLineNumbers)
     EXPECT_EQ(count(out.text, "float g;"), 2u);
 }
 
+// Cases an independent review found: a backslash-continued #include, a "guard" with an #else, the
+// version's own predefined macros, __LINE__, and an empty source folder.
+TEST(ShaderSource, ReviewFindings)
+{
+    MemFiles mem;
+    mem.files["/s/a.glsl"] = "float a_fn;\n";
+    mem.files["a.glsl"] = "float a_fn;\n";
+    mem.files["/s/alt.glsl"] = "#ifndef ALT\n#define ALT\nfloat first;\n#else\nfloat second;\n#endif\n";
+    ShaderSourceOptions opt;
+    opt.loader = mem.loader();
+    ShaderSource out;
+    Status st;
+    // The continuation line of an #include is consumed, not emitted as code.
+    ASSERT_TRUE(resolve_shader("#version 450\n#include \\\n  \"a.glsl\"\n@main:4\n", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_EQ(out.text.find("  \"a.glsl\""), std::string::npos) << out.text;
+    EXPECT_EQ(count(out.text, "float a_fn;"), 1u);
+    EXPECT_EQ(driver_lines(out.text).at("main:4"), (std::pair<int, int>{0, 4}));
+    // An #ifndef ... #else ... #endif file is not a guard: included twice, both halves appear.
+    ASSERT_TRUE(resolve_shader("#include \"alt.glsl\"\n#include \"alt.glsl\"\n", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_EQ(std::count(out.files.begin(), out.files.end(), std::string("/s/alt.glsl")), 2);  // inlined both times
+    // Under #version 450, GL_ES is known to be undefined: the include is not required.
+    EXPECT_TRUE(resolve_shader("#version 450\n#ifdef GL_ES\n#include \"missing.glsl\"\n#endif\n", "m.frag", "/s", opt, out, st))
+        << st.message;
+    EXPECT_FALSE(resolve_shader("#version 300 es\n#ifdef GL_ES\n#include \"missing.glsl\"\n#endif\n", "m.frag", "/s", opt, out, st));
+    // __LINE__ is undecidable (its value is not tracked), so the include is read; __VERSION__
+    // without #version is 110.
+    mem.read.clear();
+    EXPECT_TRUE(resolve_shader("#if __LINE__ > 1\n#include \"a.glsl\"\n#endif\n", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_TRUE(mem.was_read("/s/a.glsl"));
+    mem.read.clear();
+    EXPECT_TRUE(resolve_shader("#if __VERSION__ == 110\n#include \"a.glsl\"\n#endif\n", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_TRUE(mem.was_read("/s/a.glsl"));
+    // An empty source folder searches the bare name, not the filesystem root.
+    mem.read.clear();
+    EXPECT_TRUE(resolve_shader("#include \"a.glsl\"\n", "m.frag", "", opt, out, st)) << st.message;
+    ASSERT_FALSE(mem.read.empty());
+    EXPECT_EQ(mem.read[0], "a.glsl");
+}
+
 TEST(ShaderSource, GuardedFilesOnceUnguardedEveryTime)
 {
     MemFiles mem;
@@ -305,7 +344,10 @@ TEST(ShaderSource, InjectsDefinesAfterVersion)
     const std::string out = raykit::inject_shader_defines("// c\n#version 310 es\nvoid main(){}\n",
                                                           {{"RK_A", "3"}, ShaderDefine{"RK_B"}});
     EXPECT_EQ(out, "// c\n#version 310 es\n#define RK_A 3\n#define RK_B 1\n#line 3 0\nvoid main(){}\n");
-    EXPECT_EQ(raykit::inject_shader_defines("void main(){}\n", {{"X", "1"}}), "#define X 1\n#line 1 0\nvoid main(){}\n");
+    // No #version is GLSL 1.10, where `#line N` makes the next line N + 1: "#line 0" for line 1.
+    EXPECT_EQ(raykit::inject_shader_defines("void main(){}\n", {{"X", "1"}}), "#define X 1\n#line 0 0\nvoid main(){}\n");
+    EXPECT_EQ(raykit::inject_shader_defines("#version 150\nvoid main(){}\n", {{"X", "1"}}),
+              "#version 150\n#define X 1\n#line 1 0\nvoid main(){}\n");
     // "#version" inside a comment is not the directive.
     EXPECT_EQ(raykit::inject_shader_defines("/* #version 100 */\n#version 450\n", {{"X", "1"}}),
               "/* #version 100 */\n#version 450\n#define X 1\n#line 3 0\n");

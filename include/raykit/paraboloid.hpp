@@ -86,8 +86,9 @@ struct DualParaboloidMap {
     int half_size = 0;
     float guard_scale = 1.0f;
     float max_lod = 0.0f;
-    /// The seam cross-fade's half-width for rk_dual_paraboloid_seam_weight (z, or st at the rim):
-    /// seam_fade level-0 texels, 2 seam_fade / (guard_scale H); 0 when baked without a fade.
+    /// The seam cross-fade's half-width for rk_dual_paraboloid_seam_weight (in z): the band whose
+    /// lookups in the other half stay seam_fade level-0 texels beyond the rim, (r^2 - 1) / (r^2 + 1)
+    /// with r = 1 + 2 seam_fade / (guard_scale H); 0 when baked without a fade.
     float seam_band = 0.0f;
     std::vector<EnvImage> levels;
 };
@@ -322,9 +323,10 @@ struct DualParaboloidBakeOptions {
     /// rk_paraboloid_frame(N, up, +1) for a window): a texel's world direction is frame * local.
     /// Look up with the local direction world * frame. Identity: the map is in world space.
     mat3 frame = mat3(1.0f);
-    /// Seam cross-fade width in level-0 texels (0: none, the thesis's hard seam). The guard grows by
-    /// as much so that both halves can be read across the seam at every LOD up to max_lod; the map's
-    /// seam_band is the matching band for rk_dual_paraboloid_seam_weight and the seamless lookups.
+    /// Seam cross-fade width in level-0 texels (0: none, the thesis's hard seam; a few texels is the
+    /// intended range). The guard grows by as much so that both halves can be read across the seam
+    /// at every LOD up to max_lod; the map's seam_band is the matching band for
+    /// rk_dual_paraboloid_seam_weight and the seamless lookups.
     float seam_fade = 0.0f;
 };
 
@@ -372,7 +374,12 @@ DualParaboloidMap bake_dual_paraboloid_fn(F&& env, const DualParaboloidBakeOptio
     map.max_lod = o.max_lod;
     map.guard_scale = dual_paraboloid_guard_scale(o);
     if (o.seam_fade > 0.0f) {
-        map.seam_band = 2.0f * std::min(o.seam_fade, 65536.0f) / (map.guard_scale * static_cast<float>(o.half_size));
+        // The guard holds seam_fade texels beyond the rim: st radius r = 1 + fade_st. A direction at
+        // z = -b reads the other half at radius sqrt((1 + b) / (1 - b)), so the band whose far
+        // edge lands exactly at r is b = (r^2 - 1) / (r^2 + 1) (slightly less than fade_st): every
+        // tap of the fade then stays inside the guard.
+        const double r = 1.0 + 2.0 * std::min(o.seam_fade, 65536.0f) / (static_cast<double>(map.guard_scale) * o.half_size);
+        map.seam_band = static_cast<float>((r * r - 1.0) / (r * r + 1.0));
     }
     const int ssi = o.supersample == 0 ? 4 : o.supersample;
     const float ss = static_cast<float>(ssi);
@@ -452,8 +459,8 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// halves over |z| < map.seam_band (as rk_dual_paraboloid_sample_lod_seamless): with 2 texels
 /// (g 0.875 instead of 0.9375 for H = 64, max_lod 2: 7 % fewer texels across the disk) the jump
 /// falls to the probes' own spacing (2.3e-6 rad at every LOD), and the error inside the band
-/// (1.9e-4, 6.7e-4, 2.6e-3 rad at LOD 0, 1, 2) stays below the error beside it (1.9e-4, 7.2e-4,
-/// 2.8e-3) (Bake.SeamFadeRemovesTheJump).
+/// (1.9e-4, 6.8e-4, 2.6e-3 rad at LOD 0, 1, 2) stays below the error beside it (2.0e-4, 7.1e-4,
+/// 2.7e-3) (Bake.SeamFadeRemovesTheJump).
 /// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD); twice
 /// that inside a fade band.
 inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)

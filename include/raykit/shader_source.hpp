@@ -11,9 +11,15 @@
 //    including file resumes with `#line L F` after it, injected defines are followed by `#line`,
 //    and a `#line` is re-emitted after the #else/#elif/#endif of any block that inlined a file;
 //    `files[F]` names source string F, and shader_log_with_files() rewrites a log with the names;
-//  - includes are processed as glslang does: only in active #if blocks (conditions are evaluated
-//    with the macros defined so far: injected, predefined by #version, #define/#undef above), so an
-//    include in an inactive block is neither read nor required;
+//  - includes are processed only in active #if blocks (conditions are evaluated with the macros
+//    defined so far: injected, predefined by #version, #define/#undef above), so an include in an
+//    inactive block is neither read nor required. Integer expressions, defined, object-like macros
+//    and the version's GL_ES / GL_core_profile / __VERSION__ are decided as glslang does; __LINE__,
+//    __FILE__, function-like macros and GL_* extension names count as undecidable (see below).
+//    Not modelled: a `//` comment continued by a backslash, and a block comment that starts inside
+//    a directive and ends on a later line (glslang joins them to the directive);
+//  - `#line` follows the version's rule: the next line is N from GLSL 3.30 / ES 3.00 on, N + 1
+//    before (and without #version), as drivers read it;
 //  - each include-guarded file is inlined once: a file whose text is one `#ifndef G / #define G ...
 //    #endif` block is skipped when G is already defined (the result the preprocessor would give);
 //  - `#version` is found only as a directive (not in comments), `#extension
@@ -27,6 +33,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -200,7 +207,10 @@ struct PpValue {
 /// Evaluates a #if expression (integer arithmetic, defined, macros expanded) over `macros`.
 class PpExpr {
 public:
-    PpExpr(const std::map<std::string, PpMacro>& macros) : macros_(macros) {}
+    PpExpr(const std::map<std::string, PpMacro>& macros, const std::set<std::string>& absent)
+        : macros_(macros), absent_(absent)
+    {
+    }
 
     PpValue eval(const std::string& text)
     {
@@ -419,10 +429,15 @@ private:
                 }
                 const auto it = macros_.find(name);
                 if (it != macros_.end()) return it->second.uncertain ? unknown() : PpValue{1, true};
+                if (name == "__LINE__" || name == "__FILE__") return {1, true};
+                if (absent_.count(name)) return {0, true};
                 // Extension macros (GL_ARB_...) depend on the driver.
                 if (name.compare(0, 3, "GL_") == 0) return unknown();
                 return {0, true};
             }
+            // __LINE__ and __FILE__ have values the resolver does not track: undecidable.
+            if (t.s == "__LINE__" || t.s == "__FILE__") return unknown();
+            if (absent_.count(t.s)) return {0, true};
             // An identifier left after expansion: 0 in C; an extension name the driver may define.
             if (t.s.compare(0, 3, "GL_") == 0) return unknown();
             return {0, true};
@@ -447,6 +462,7 @@ private:
     }
 
     const std::map<std::string, PpMacro>& macros_;
+    const std::set<std::string>& absent_;  // names known not to be defined (GL_ES under #version 450)
     std::vector<Tok> toks_;
     size_t pos_ = 0;
     bool bad_ = false;
@@ -481,9 +497,18 @@ inline std::string include_guard(const std::vector<std::string>& code)
         }
         if (!dir) continue;
         if (kw == "if" || kw == "ifdef" || kw == "ifndef") ++depth;
+        if ((kw == "else" || kw == "elif") && depth == 1) return "";  // an alternative: not a guard
         if (kw == "endif" && --depth == 0) stage = 3;
     }
     return stage == 3 ? guard : "";
+}
+
+/// 1 where `#line N` makes the next line N + 1 (GLSL before 3.30, ES 1.00, no #version: 1.10),
+/// 0 where it makes it N (GLSL 3.30 and later, ES 3.00 and later).
+inline long long glsl_line_offset(long long version, const std::string& profile)
+{
+    if (profile == "es") return version >= 300 ? 0 : 1;
+    return version >= 330 ? 0 : 1;
 }
 
 class ShaderResolver {
@@ -493,6 +518,7 @@ public:
     bool run(const std::string& source, const std::string& name, const std::string& dir)
     {
         out_ = ShaderSource{};
+        macros_["__VERSION__"] = PpMacro{"110", false, false};  // until a #version says otherwise
         for (const ShaderDefine& d : opt_.defines) {
             bool ok = !d.name.empty() && is_ident_start(d.name[0]);
             for (char ch : d.name) ok = ok && is_ident_char(ch);
@@ -546,9 +572,14 @@ private:
         size_t i = 0;
         while (i < rest.size() && is_space(rest[i])) ++i;
         long long v = 0;
-        while (i < rest.size() && rest[i] >= '0' && rest[i] <= '9') v = v * 10 + (rest[i++] - '0');
+        while (i < rest.size() && rest[i] >= '0' && rest[i] <= '9') {
+            v = v * 10 + (rest[i++] - '0');
+            if (v > 100000) break;  // not a GLSL version; the driver reports it
+        }
         const std::string profile = first_ident(rest.substr(i));
         macros_["__VERSION__"] = PpMacro{std::to_string(v), false, false};
+        line_offset_ = glsl_line_offset(v, profile);
+        for (const char* m : {"GL_ES", "GL_core_profile", "GL_compatibility_profile"}) known_absent_.insert(m);
         if (profile == "es" || v == 100) macros_["GL_ES"] = PpMacro{"1", false, false};
         if (profile == "compatibility") macros_["GL_compatibility_profile"] = PpMacro{"1", false, false};
         if (profile != "es" && profile != "compatibility" && v >= 150) macros_["GL_core_profile"] = PpMacro{"1", false, false};
@@ -570,7 +601,7 @@ private:
         bool injected = index != 0;  // defines go after the main file's #version
         const long long base = opt_.unique_line_numbers ? static_cast<long long>(index) * RK_SHADER_LINE_STRIDE : 0;
         auto sync = [&](long long next) {
-            out_.text += "#line " + std::to_string(base + next) + " " + std::to_string(index) + "\n";
+            out_.text += "#line " + std::to_string(base + next - line_offset_) + " " + std::to_string(index) + "\n";
         };
         if (index == 0 && !opt_.defines.empty()) {
             // Inject at the top unless a #version directive comes first (then right after it).
@@ -611,18 +642,24 @@ private:
             }
             const bool act = active(cs), surely = sure(cs);
             const std::string where = name + ":" + std::to_string(line);
+            // A directive replaced by the resolver consumes its continuation lines too.
+            const long long spanned = static_cast<long long>(last - li);
             if (kw == "include" && act) {
                 const bool outer = outer_sure_;
                 outer_sure_ = surely;
                 const bool ok = include(rest, where, dir, depth, surely);
                 outer_sure_ = outer;
                 if (!ok) return false;
+                line += spanned;
+                li = last;
                 sync(line + 1);
                 dirty = dirty || !surely;
                 continue;
             }
             if (kw == "include" || (kw == "extension" && rest.find("GL_GOOGLE_include_directive") != std::string::npos)) {
-                out_.text += "\n";  // the driver would reject it; keep the line count
+                for (size_t k = li; k <= last; ++k) out_.text += "\n";  // the driver would reject it; keep the line count
+                line += spanned;
+                li = last;
                 continue;
             }
             for (size_t k = li; k <= last; ++k) out_.text += rtrim(code[k]) + "\n";
@@ -645,7 +682,7 @@ private:
                     any = true;
                     if (v > (1ll << 40)) break;
                 }
-                if (any) line = v - 1;
+                if (any) line = v - 1 + line_offset_;
             } else if (kw == "define" && act) {
                 define(rest, surely);
             } else if (kw == "undef" && act) {
@@ -660,10 +697,10 @@ private:
                 if (act) {
                     int s = 0;
                     if (kw == "if") {
-                        const PpValue v = PpExpr(macros_).eval(rest);
+                        const PpValue v = PpExpr(macros_, known_absent_).eval(rest);
                         s = !v.known ? -1 : (v.v != 0 ? 1 : 0);
                     } else {
-                        const PpValue d = PpExpr(macros_).eval("defined(" + first_ident(rest) + ")");
+                        const PpValue d = PpExpr(macros_, known_absent_).eval("defined(" + first_ident(rest) + ")");
                         s = !d.known ? -1 : ((d.v != 0) == (kw == "ifdef") ? 1 : 0);
                     }
                     c.state = s;
@@ -682,7 +719,7 @@ private:
                 } else if (kw == "else") {
                     c.state = c.any_unknown ? -1 : 1;
                 } else {
-                    const PpValue v = PpExpr(macros_).eval(rest);
+                    const PpValue v = PpExpr(macros_, known_absent_).eval(rest);
                     const int s = !v.known ? -1 : (v.v != 0 ? 1 : 0);
                     c.state = (s == 1 && c.any_unknown) ? -1 : s;
                 }
@@ -717,7 +754,7 @@ private:
             return st_.fail(Error::syntax, where + ": malformed #include (expected \"name\" or <name>)");
         }
         const std::string inc = rest.substr(i + 1, end - i - 1);
-        std::vector<std::string> candidates{normalize_path(dir + "/" + inc)};
+        std::vector<std::string> candidates{normalize_path(dir.empty() ? inc : dir + "/" + inc)};
         for (const std::string& d : opt_.include_dirs) candidates.push_back(normalize_path(d + "/" + inc));
         std::string path, body;
         for (const std::string& c : candidates) {
@@ -747,7 +784,7 @@ private:
             if (!g.empty()) guards_[path] = g;
         }
         const long long first = opt_.unique_line_numbers ? static_cast<long long>(out_.files.size()) * RK_SHADER_LINE_STRIDE : 0;
-        out_.text += "#line " + std::to_string(first + 1) + " " + std::to_string(out_.files.size()) + "\n";
+        out_.text += "#line " + std::to_string(first + 1 - line_offset_) + " " + std::to_string(out_.files.size()) + "\n";
         return file(body, path, dir_of(path), depth + 1);
     }
 
@@ -757,6 +794,10 @@ private:
     std::map<std::string, PpMacro> macros_;
     std::map<std::string, std::string> guards_;  // file -> its include-guard macro
     bool outer_sure_ = true;                      // the file being read was included surely
+    // GLSL before 3.30 (and ES 1.00, and no #version: 1.10) reads `#line N` as "the next line is
+    // N + 1"; 3.30+ and ES 3.00+ as "the next line is N". Emitted numbers subtract this.
+    long long line_offset_ = 1;
+    std::set<std::string> known_absent_;          // built-in macros the #version rules out
 };
 
 }  // namespace detail
@@ -868,19 +909,27 @@ inline std::string inject_shader_defines(const std::string& source, const std::v
     std::vector<std::string> raw, code;
     detail::split_code_lines(source, raw, code);
     size_t version = raw.size();
+    long long offset = 1;  // no #version: GLSL 1.10, where `#line N` makes the next line N + 1
     for (size_t i = 0; i < code.size(); ++i) {
         std::string kw, rest;
         if (detail::parse_directive(code[i], kw, rest)) {
-            if (kw == "version") version = i;
+            if (kw == "version") {
+                version = i;
+                size_t k = 0;
+                while (k < rest.size() && detail::is_space(rest[k])) ++k;
+                long long v = 0;
+                while (k < rest.size() && rest[k] >= '0' && rest[k] <= '9' && v < 100000) v = v * 10 + (rest[k++] - '0');
+                offset = detail::glsl_line_offset(v, detail::first_ident(rest.substr(k)));
+            }
             break;
         }
         if (code[i].find_first_not_of(" \t\r\f\v") != std::string::npos) break;
     }
-    if (version == raw.size()) return block + "#line 1 0\n" + source;
+    if (version == raw.size()) return block + "#line " + std::to_string(1 - offset) + " 0\n" + source;
     std::string out;
     for (size_t i = 0; i < raw.size(); ++i) {
         out += raw[i] + "\n";
-        if (i == version) out += block + "#line " + std::to_string(i + 2) + " 0\n";
+        if (i == version) out += block + "#line " + std::to_string(static_cast<long long>(i) + 2 - offset) + " 0\n";
     }
     return out;
 }

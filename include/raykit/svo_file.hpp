@@ -446,10 +446,12 @@ inline int64_t tell(std::FILE* f)
 /// [0, desc_words) and the bricks [desc_words, desc_words + brick_count); non-zero child and brick
 /// masks (only the root of an empty tree may be empty; 2^3 bricks set bits 0..7 only); far_slots,
 /// level_nodes (level_nodes[0] = 1, also for an empty tree), voxel_count, brick_base (running sum
-/// from desc_words + brick_count of sub-nodes + voxels) and attr_count equal what the walk counts;
+/// from desc_words + brick_count of sub-nodes + voxels, or of voxels only with the shared-sub flag
+/// in its top bit when RK_SVO_ATTR_SHARED_SUB is set) and attr_count equal what the walk counts;
 /// material words < material count; materials (only with RK_SVO_ATTR_MATERIAL, 1..65536) finite
 /// with ior > 0. Limits (too_large): desc_words + 3 * brick_count <= 2^32 (t.gpu_words() indices
-/// fit 32 bits), attr_count <= 2^32. Other failures: SvoError::corrupt, with a message naming the
+/// fit 32 bits), attr_count <= 2^32 and brick attribute indices <= 2^31 (brick_base's top bit is
+/// the shared-sub flag). Other failures: SvoError::corrupt, with a message naming the
 /// field and the ordinal / word / level. Cost: O(words + attributes) time, at most desc_words
 /// bytes of scratch (one per child group).
 inline bool svo_validate(const SvoTree& t, SvoStatus& st)
@@ -611,9 +613,9 @@ inline bool svo_validate(const SvoTree& t, SvoStatus& st)
                        (shared ? " (the shared-sub flag | desc_words + brick_count + the voxels of the bricks before)"
                                : " (desc_words + brick_count + the sub-nodes and voxels of the bricks before)"));
         run += (shared ? 0u : subs) + vox;
-        if (run > (shared ? (k2p32 >> 1) : k2p32))
-            return st.fail(SvoError::too_large, "svo_validate: attribute indices exceed 2^" + std::string(shared ? "31" : "32") +
-                                                    " at brick " + num(j));
+        // brick_base's top bit is the shared-sub flag: indices stay below 2^31 in every tree.
+        if (run > (k2p32 >> 1))
+            return st.fail(SvoError::too_large, "svo_validate: attribute indices exceed 2^31 at brick " + num(j));
         if (b == 2u) found[top + 1u] += subs;
         found[depth] += vox;
     }

@@ -4,6 +4,7 @@
 // the file and line where the error was written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <string>
@@ -145,6 +146,41 @@ TEST(GpuShaderSource, DriverErrorsNameTheRightFileAndLine)
                 EXPECT_EQ(file, c.want_file) << c.what << "\n" << log;
             }
             EXPECT_EQ(src.text.find("filler_1199"), std::string::npos) << c.what << ": big.glsl was inlined";
+        }
+    }
+    // `#line` means "the next line is N" from GLSL 3.30 and ES 3.00 on, "N + 1" before (and without
+    // #version): the resolver numbers for the version it reads. An error in the main file after an
+    // include and one inside the include, for old and new versions, with and without defines.
+    for (const char* version : {"", "#version 150\n", "#version 330\n", "#version 300 es\nprecision highp float;\n"}) {
+        for (const bool with_defines : {false, true}) {
+            Files f;
+            f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
+            const std::string head = std::string(version) + "#include \"inc.glsl\"\n";
+            const int head_lines = static_cast<int>(std::count(head.begin(), head.end(), '\n'));
+            for (const bool error_in_include : {false, true}) {
+                const bool es = std::string(version).find("es") != std::string::npos, legacy = std::string(version).empty();
+                // GLSL 1.10 (no #version) has no `out`: gl_FragColor there.
+                f.text["/s/main.frag"] = head + (legacy ? "// (1.10: gl_FragColor)\n" : es ? "out highp vec4 o;\n" : "out vec4 o;\n") +
+                                         "\nvoid main() { " + (legacy ? "gl_FragColor" : "o") + " = vec4(" +
+                                         (error_in_include ? "inc_a(1.0)" : "undefined_in_main") + "); }\n";
+                if (!error_in_include) f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\n";
+                raykit::ShaderSourceOptions opt;
+                opt.loader = f.loader();
+                opt.unique_line_numbers = true;
+                if (with_defines) opt.defines = {{"RK_A", "1"}, {"RK_B", "2"}};
+                raykit::ShaderSource src;
+                raykit::Status st;
+                ASSERT_TRUE(raykit::load_shader("/s/main.frag", opt, src, st)) << st.message;
+                const std::string log = raykit::shader_log_with_files(compile_log(src.text), src.files);
+                std::string file;
+                int line = 0;
+                const std::string what = std::string("version '") + version + "'" + (with_defines ? " with defines" : "") +
+                                         (error_in_include ? ", error in the include" : ", error in main");
+                ASSERT_TRUE(first_error(log, file, line)) << what << ": no error location in\n" << log << "\n" << src.text;
+                EXPECT_EQ(file, error_in_include ? "/s/inc.glsl" : "/s/main.frag") << what << "\n" << log;
+                EXPECT_EQ(line, error_in_include ? 2 : head_lines + 3) << what << "\n" << log << "\n" << src.text;
+                f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
+            }
         }
     }
     // The same main file without errors compiles (the resolver's output is valid GLSL).

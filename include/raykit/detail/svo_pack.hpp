@@ -207,7 +207,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     }
     // Bricks: masks, brick bases; sub-node counts; attribute count.
     if (shared) t.attributes |= RK_SVO_ATTR_SHARED_SUB;
-    const uint64_t attr_limit = shared ? (1ull << 31) : (1ull << 32);  // the top bit of brick_base flags
+    const uint64_t attr_limit = 1ull << 31;  // the top bit of brick_base is the shared-sub flag
     uint64_t attr = desc_words + nb;
     {
         t.brick_base.resize(nb);
@@ -223,7 +223,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
             const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(glm::uvec2(lo, hi)))) : 0u;
             if (b == 2) t.level_nodes[top + 1] += subs;
             attr += (shared ? 0u : subs) + (brick_first[j + 1] - brick_first[j]);
-            if (attr >= attr_limit) return st.fail(SvoError::too_large, shared ? "more than 2^31 attribute entries (shared sub-node attributes)" : "more than 2^32 attribute entries");
+            if (attr > attr_limit) return st.fail(SvoError::too_large, "more than 2^31 attribute entries");
         }
         t.level_nodes[depth] = leaves.size();
     }

@@ -1,7 +1,8 @@
 // The second translation unit of tests/test_odr.cpp: every macro differs from the defaults of the
-// first (tone map Reinhard, single-surface Fresnel, fast window glass, additive window, varying
+// first (tone map Reinhard with another AgX look, single-surface Fresnel, fast window glass, additive window, varying
 // walls, another nudge).
 #define RK_TONEMAP_OPERATOR 1
+#define RK_AGX_LOOK 2
 #define RK_FRESNEL_WINDOW_MODE 0
 #define RK_WINDOW_GLASS_FRESNEL 1
 #define RK_IM_COMPOSE_MODE 1
