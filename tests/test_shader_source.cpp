@@ -255,6 +255,14 @@ TEST(ShaderSource, ReviewFindings)
     mem.read.clear();
     EXPECT_TRUE(resolve_shader("#if __VERSION__ == 110\n#include \"a.glsl\"\n#endif\n", "m.frag", "/s", opt, out, st)) << st.message;
     EXPECT_TRUE(mem.was_read("/s/a.glsl"));
+    // A `//` comment ending in a backslash continues on the next line (the preprocessor splices
+    // it): the #include there is commented out. CR-only line endings count as lines.
+    mem.read.clear();
+    EXPECT_TRUE(resolve_shader("// note \\\n#include \"missing.glsl\"\nfloat x;\n", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_TRUE(mem.read.empty());
+    ASSERT_TRUE(resolve_shader("#version 450\r#include \"a.glsl\"\r@main:3\r", "m.frag", "/s", opt, out, st)) << st.message;
+    EXPECT_EQ(count(out.text, "float a_fn;"), 1u);
+    EXPECT_EQ(driver_lines(out.text).at("main:3"), (std::pair<int, int>{0, 3}));
     // An empty source folder searches the bare name, not the filesystem root.
     mem.read.clear();
     EXPECT_TRUE(resolve_shader("#include \"a.glsl\"\n", "m.frag", "", opt, out, st)) << st.message;

@@ -16,8 +16,8 @@
 //    inactive block is neither read nor required. Integer expressions, defined, object-like macros
 //    and the version's GL_ES / GL_core_profile / __VERSION__ are decided as glslang does; __LINE__,
 //    __FILE__, function-like macros and GL_* extension names count as undecidable (see below).
-//    Not modelled: a `//` comment continued by a backslash, and a block comment that starts inside
-//    a directive and ends on a later line (glslang joins them to the directive);
+//    Not modelled: a block comment that starts inside a directive and ends on a later line
+//    (glslang joins what follows it to the directive);
 //  - `#line` follows the version's rule: the next line is N from GLSL 3.30 / ES 3.00 on, N + 1
 //    before (and without #version), as drivers read it;
 //  - each include-guarded file is inlined once: a file whose text is one `#ifndef G / #define G ...
@@ -128,18 +128,27 @@ inline bool is_ident_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' 
 inline bool is_ident_char(char c) { return is_ident_start(c) || (c >= '0' && c <= '9'); }
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-/// Splits text into physical lines (without '\n' or a trailing '\r') and, for each, the code with
-/// comments blanked (comment state carried across lines).
+/// Splits text into physical lines (ended by "\n", "\r\n" or a lone "\r", as drivers count them) and,
+/// for each, the code with comments blanked (comment state carried across lines; a `//` comment
+/// ending in a backslash continues on the next line, as the preprocessor splices it).
 inline void split_code_lines(const std::string& text, std::vector<std::string>& raw, std::vector<std::string>& code)
 {
-    bool in_block = false;
+    bool in_block = false, line_comment_continues = false;
     size_t i = 0;
     while (i < text.size()) {
-        size_t e = text.find('\n', i);
+        size_t e = text.find_first_of("\r\n", i);
         if (e == std::string::npos) e = text.size();
         std::string line = text.substr(i, e - i);
-        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const size_t next = e < text.size() && text[e] == '\r' && e + 1 < text.size() && text[e + 1] == '\n' ? e + 2 : e + 1;
         std::string c(line.size(), ' ');
+        if (line_comment_continues) {
+            const size_t p = line.find_last_not_of(" \t");
+            line_comment_continues = p != std::string::npos && line[p] == '\\';
+            raw.push_back(line);
+            code.push_back(c);
+            i = next;
+            continue;
+        }
         bool in_quote = false;
         for (size_t k = 0; k < line.size(); ++k) {
             if (in_block) {
@@ -149,7 +158,11 @@ inline void split_code_lines(const std::string& text, std::vector<std::string>& 
                 }
                 continue;
             }
-            if (!in_quote && line[k] == '/' && k + 1 < line.size() && line[k + 1] == '/') break;
+            if (!in_quote && line[k] == '/' && k + 1 < line.size() && line[k + 1] == '/') {
+                const size_t p = line.find_last_not_of(" \t");
+                line_comment_continues = p != std::string::npos && p > k + 1 && line[p] == '\\';
+                break;
+            }
             if (!in_quote && line[k] == '/' && k + 1 < line.size() && line[k + 1] == '*') {
                 in_block = true;
                 ++k;
@@ -160,7 +173,7 @@ inline void split_code_lines(const std::string& text, std::vector<std::string>& 
         }
         raw.push_back(line);
         code.push_back(c);
-        i = e + 1;
+        i = next;
     }
 }
 
