@@ -17,7 +17,7 @@
 //    and the version's GL_ES / GL_core_profile / __VERSION__ are decided as glslang does; __LINE__,
 //    __FILE__, function-like macros and GL_* extension names count as undecidable (see below).
 //    Not modelled: a block comment that starts inside a directive and ends on a later line
-//    (glslang joins what follows it to the directive);
+//    (glslang joins what follows it to the directive); paths use '/' (give Windows paths so);
 //  - `#line` follows the version's rule: the next line is N from GLSL 3.30 / ES 3.00 on, N + 1
 //    before (and without #version), as drivers read it;
 //  - each include-guarded file is inlined once: a file whose text is one `#ifndef G / #define G ...
