@@ -516,6 +516,48 @@ inline std::string include_guard(const std::vector<std::string>& code)
     return stage == 3 ? guard : "";
 }
 
+/// Whether a define can be injected: its name an identifier, its value one line. "" when it can,
+/// else the reason.
+inline std::string define_error(const ShaderDefine& d)
+{
+    bool ok = !d.name.empty() && is_ident_start(d.name[0]);
+    for (char ch : d.name) ok = ok && is_ident_char(ch);
+    if (!ok) return "raykit: invalid shader macro name '" + d.name + "' (names are identifiers)";
+    if (d.value.find('\n') != std::string::npos) return "raykit: shader macro '" + d.name + "' has a newline in its value";
+    return "";
+}
+
+/// The `#define name value` lines of `defines`, in order.
+inline std::string define_block(const std::vector<ShaderDefine>& defines)
+{
+    std::string block;
+    for (const ShaderDefine& d : defines) block += "#define " + d.name + " " + d.value + "\n";
+    return block;
+}
+
+/// The line index of the `#version` directive when it is the first directive and nothing but
+/// blank lines or comments precedes it (where defines go); `code.size()` when there is none.
+inline size_t version_line(const std::vector<std::string>& code)
+{
+    for (size_t i = 0; i < code.size(); ++i) {
+        std::string kw, rest;
+        if (parse_directive(code[i], kw, rest)) return kw == "version" ? i : code.size();
+        if (code[i].find_first_not_of(" \t\r\f\v") != std::string::npos) break;
+    }
+    return code.size();
+}
+
+/// The number and profile of a `#version` directive's text (after the keyword); numbers above
+/// 100000 (not GLSL versions) stop the parse, the driver reports them.
+inline void parse_version(const std::string& rest, long long& version, std::string& profile)
+{
+    size_t i = 0;
+    while (i < rest.size() && is_space(rest[i])) ++i;
+    version = 0;
+    while (i < rest.size() && rest[i] >= '0' && rest[i] <= '9' && version <= 100000) version = version * 10 + (rest[i++] - '0');
+    profile = first_ident(rest.substr(i));
+}
+
 /// 1 where `#line N` makes the next line N + 1 (GLSL before 3.30, ES 1.00, no #version: 1.10),
 /// 0 where it makes it N (GLSL 3.30 and later, ES 3.00 and later).
 inline long long glsl_line_offset(long long version, const std::string& profile)
@@ -533,12 +575,8 @@ public:
         out_ = ShaderSource{};
         macros_["__VERSION__"] = PpMacro{"110", false, false};  // until a #version says otherwise
         for (const ShaderDefine& d : opt_.defines) {
-            bool ok = !d.name.empty() && is_ident_start(d.name[0]);
-            for (char ch : d.name) ok = ok && is_ident_char(ch);
-            if (!ok) return st_.fail(Error::invalid_argument, "raykit: invalid shader macro name '" + d.name + "'");
-            if (d.value.find('\n') != std::string::npos) {
-                return st_.fail(Error::invalid_argument, "raykit: shader macro '" + d.name + "' has a newline in its value");
-            }
+            const std::string why = define_error(d);
+            if (!why.empty()) return st_.fail(Error::invalid_argument, why);
             macros_[d.name] = PpMacro{d.value, false, false};
         }
         return file(source, name, dir, 0);
@@ -582,14 +620,9 @@ private:
 
     void predefine_version(const std::string& rest)
     {
-        size_t i = 0;
-        while (i < rest.size() && is_space(rest[i])) ++i;
         long long v = 0;
-        while (i < rest.size() && rest[i] >= '0' && rest[i] <= '9') {
-            v = v * 10 + (rest[i++] - '0');
-            if (v > 100000) break;  // not a GLSL version; the driver reports it
-        }
-        const std::string profile = first_ident(rest.substr(i));
+        std::string profile;
+        parse_version(rest, v, profile);
         macros_["__VERSION__"] = PpMacro{std::to_string(v), false, false};
         line_offset_ = glsl_line_offset(v, profile);
         for (const char* m : {"GL_ES", "GL_core_profile", "GL_compatibility_profile"}) known_absent_.insert(m);
@@ -618,18 +651,7 @@ private:
         };
         if (index == 0 && !opt_.defines.empty()) {
             // Inject at the top unless a #version directive comes first (then right after it).
-            bool has_version = false;
-            for (const std::string& c : code) {
-                std::string kw, rest;
-                if (parse_directive(c, kw, rest)) {
-                    has_version = kw == "version";
-                    break;
-                }
-                bool blank = true;
-                for (char ch : c) blank = blank && is_space(ch);
-                if (!blank) break;
-            }
-            if (!has_version) {
+            if (version_line(code) == code.size()) {
                 emit_defines();
                 sync(1);
                 injected = true;
@@ -751,10 +773,7 @@ private:
         return true;
     }
 
-    void emit_defines()
-    {
-        for (const ShaderDefine& d : opt_.defines) out_.text += "#define " + d.name + " " + d.value + "\n";
-    }
+    void emit_defines() { out_.text += define_block(opt_.defines); }
 
     bool include(const std::string& rest, const std::string& where, const std::string& dir, int depth, bool surely)
     {
@@ -909,34 +928,24 @@ inline std::string inject_shader_defines(const std::string& source, const std::v
 {
     detail::reset(st);
     if (defines.empty()) return source;
-    std::string block;
     for (const ShaderDefine& d : defines) {
-        bool ok = !d.name.empty() && detail::is_ident_start(d.name[0]) && d.value.find('\n') == std::string::npos;
-        for (char ch : d.name) ok = ok && detail::is_ident_char(ch);
-        if (!ok) {
-            detail::report(st, "raykit: invalid shader macro '" + d.name + "' (names are identifiers, values one line)");
+        const std::string why = detail::define_error(d);
+        if (!why.empty()) {
+            detail::report(st, why);
             return "";
         }
-        block += "#define " + d.name + " " + d.value + "\n";
     }
+    const std::string block = detail::define_block(defines);
     std::vector<std::string> raw, code;
     detail::split_code_lines(source, raw, code);
-    size_t version = raw.size();
+    const size_t version = detail::version_line(code);
     long long offset = 1;  // no #version: GLSL 1.10, where `#line N` makes the next line N + 1
-    for (size_t i = 0; i < code.size(); ++i) {
-        std::string kw, rest;
-        if (detail::parse_directive(code[i], kw, rest)) {
-            if (kw == "version") {
-                version = i;
-                size_t k = 0;
-                while (k < rest.size() && detail::is_space(rest[k])) ++k;
-                long long v = 0;
-                while (k < rest.size() && rest[k] >= '0' && rest[k] <= '9' && v < 100000) v = v * 10 + (rest[k++] - '0');
-                offset = detail::glsl_line_offset(v, detail::first_ident(rest.substr(k)));
-            }
-            break;
-        }
-        if (code[i].find_first_not_of(" \t\r\f\v") != std::string::npos) break;
+    if (version < code.size()) {
+        std::string kw, rest, profile;
+        detail::parse_directive(code[version], kw, rest);
+        long long v = 0;
+        detail::parse_version(rest, v, profile);
+        offset = detail::glsl_line_offset(v, profile);
     }
     if (version == raw.size()) return block + "#line " + std::to_string(1 - offset) + " 0\n" + source;
     std::string out;
