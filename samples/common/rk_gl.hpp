@@ -172,13 +172,10 @@ inline std::string resolved_shader(const std::string& source, const std::string&
 inline std::string shader_file(const std::string& path, const std::vector<std::string>& include_dirs,
                                const std::vector<raykit::ShaderDefine>& defines = {})
 {
-    raykit::ShaderSourceOptions opt;
-    opt.include_dirs = include_dirs;
-    opt.defines = defines;
-    raykit::ShaderSource out;
     raykit::Status st;
-    if (!raykit::load_shader(path, opt, out, st)) throw std::runtime_error(st.message);
-    return out.text;
+    std::string text = raykit::load_shader_file(path, include_dirs, defines, nullptr, &st);
+    if (!st) throw std::runtime_error(st.message);
+    return text;
 }
 
 /// Compiles and links a program from (stage, source) pairs; throws std::runtime_error with the
