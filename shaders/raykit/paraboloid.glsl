@@ -284,23 +284,10 @@ RK_INLINE float rk_dual_paraboloid_guard_scale(float half_size, float footprint)
 /// otherwise. Exact. Cost: 1 select.
 RK_INLINE float rk_dual_paraboloid_hemi(vec3 dir) { return rk_paraboloid_hemi_sign(dir.z); }
 
-/// rk_dual_paraboloid_uv: atlas texture coordinates of `dir` (normalised internally): the
-/// hemisphere by the sign of z, then u = (0.5 + 0.5 g s) / 2 (+ 0.5 for the right half),
-/// v = 0.5 + 0.5 g t, with g from rk_dual_paraboloid_guard_scale. |st| <= 1 always (the chosen
-/// hemisphere contains dir), so u stays in [0.25 (1 - g), 0.25 (1 + g)] (+ 0.5) and the filter taps
-/// never cross into the other half (tests/test_paraboloid.cpp checks every tap up to the LOD, on
-/// and beside the seam). Max error: 1e-7 in uv. Cost: rk_paraboloid_encode + 4 flops.
-RK_INLINE vec2 rk_dual_paraboloid_uv(vec3 dir, float guard_scale)
-{
-    float h = rk_dual_paraboloid_hemi(dir);
-    vec2 uv = rk_paraboloid_uv(rk_paraboloid_encode(dir, h), guard_scale);
-    return vec2(0.5f * uv.x + (h > 0.0f ? 0.0f : 0.5f), uv.y);
-}
-
 /// rk_dual_paraboloid_uv_half: atlas coordinates of `dir` in a given half (hemi > -RK_FLT_MIN: the
 /// left, +z half; else the right one), whatever the sign of dir.z: a direction just across the seam
 /// lands in that half's guard band (|st| slightly above 1). The seam cross-fade reads both halves
-/// with it. Equal to rk_dual_paraboloid_uv when hemi = rk_dual_paraboloid_hemi(dir).
+/// with it; rk_dual_paraboloid_uv is it with hemi = rk_dual_paraboloid_hemi(dir).
 /// Max error: 1e-7 in uv within the half's guard band; deeper into the other hemisphere |st| grows
 /// as 1 / (1 - |z|) and the rounding with it (relative error ~1e-5 of st near the antipode).
 /// Cost: rk_paraboloid_encode + 4 flops.
@@ -310,6 +297,18 @@ RK_INLINE vec2 rk_dual_paraboloid_uv_half(vec3 dir, float guard_scale, float hem
     vec2 uv = rk_paraboloid_uv(rk_paraboloid_encode(dir, h), guard_scale);
     return vec2(0.5f * uv.x + (h > 0.0f ? 0.0f : 0.5f), uv.y);
 }
+
+/// rk_dual_paraboloid_uv: atlas texture coordinates of `dir` (normalised internally): the
+/// hemisphere by the sign of z, then u = (0.5 + 0.5 g s) / 2 (+ 0.5 for the right half),
+/// v = 0.5 + 0.5 g t, with g from rk_dual_paraboloid_guard_scale. |st| <= 1 always (the chosen
+/// hemisphere contains dir), so u stays in [0.25 (1 - g), 0.25 (1 + g)] (+ 0.5) and the filter taps
+/// never cross into the other half (tests/test_paraboloid.cpp checks every tap up to the LOD, on
+/// and beside the seam). Max error: 1e-7 in uv. Cost: rk_paraboloid_encode + 4 flops.
+RK_INLINE vec2 rk_dual_paraboloid_uv(vec3 dir, float guard_scale)
+{
+    return rk_dual_paraboloid_uv_half(dir, guard_scale, rk_dual_paraboloid_hemi(dir));
+}
+
 
 /// rk_dual_paraboloid_seam_weight: the weight of the +z half in the seam cross-fade: with z the
 /// normalised direction's z, 1 for z >= band, 0 for z <= -band, 0.5 + 0.5 z / band between (near
