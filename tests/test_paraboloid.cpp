@@ -704,6 +704,29 @@ TEST(Bake, MipsAreBoxFiltersAndNeverMixHalves)
     EXPECT_EQ(cube_from_dual_paraboloid(DualParaboloidMap{}, 8, 2, &st).size, 0);
 }
 
+namespace {
+/// The largest angle between lookups just above and just below the seam (z = +-1e-6) over n_phi
+/// azimuths (the axes included: the largest jumps are there), and where it is.
+struct SeamJump {
+    double max = 0, phi = 0;
+};
+SeamJump seam_jump(const DualParaboloidMap& map, float lod, int n_phi)
+{
+    SeamJump r;
+    for (int k = 0; k < n_phi; ++k) {
+        const double phi = 2.0 * kPi * k / n_phi;
+        const float c = static_cast<float>(std::cos(phi)), s = static_cast<float>(std::sin(phi));
+        const double j = angle_between(sample_dual_paraboloid(map, vec3(c, s, 1e-6f), lod),
+                                       sample_dual_paraboloid(map, vec3(c, s, -1e-6f), lod));
+        if (j > r.max) {
+            r.max = j;
+            r.phi = phi;
+        }
+    }
+    return r;
+}
+}  // namespace
+
 // The seam cross-fade (DualParaboloidBakeOptions::seam_fade): with a band of 2 level-0 texels the
 // lookup is continuous across z = 0 (the jump h^2 / 4 of the hard seam goes to float noise), the
 // error inside the band stays at the size of the error beside it, and away from the band the
@@ -726,7 +749,8 @@ TEST(Bake, SeamFadeRemovesTheJump)
     EXPECT_EQ(hard.seam_band, 0.0f);
     const int n_phi = 2048;
     for (float lod : {0.0f, 1.0f, 1.5f, 2.0f}) {
-        double jump_hard = 0, jump_soft = 0, band_err = 0, beside_err = 0, step_max = 0;
+        const double jump_hard = seam_jump(hard, lod, n_phi).max, jump_soft = seam_jump(soft, lod, n_phi).max;
+        double band_err = 0, beside_err = 0, step_max = 0;
         for (int k = 0; k < n_phi; ++k) {
             const double phi = 2.0 * kPi * k / n_phi;
             const float c = static_cast<float>(std::cos(phi)), s = static_cast<float>(std::sin(phi));
@@ -734,10 +758,6 @@ TEST(Bake, SeamFadeRemovesTheJump)
                 const double q = std::sqrt(1.0 - z * z);
                 return vec3(static_cast<float>(q * c), static_cast<float>(q * s), static_cast<float>(z));
             };
-            jump_hard = std::max(jump_hard, angle_between(sample_dual_paraboloid(hard, dir(1e-6), lod),
-                                                          sample_dual_paraboloid(hard, dir(-1e-6), lod)));
-            jump_soft = std::max(jump_soft, angle_between(sample_dual_paraboloid(soft, dir(1e-6), lod),
-                                                          sample_dual_paraboloid(soft, dir(-1e-6), lod)));
             // Along the meridian through the band: the error, and the largest change between
             // neighbouring samples 1/64 of the band apart (a jump would show as one big step).
             const double b = soft.seam_band;
@@ -847,17 +867,8 @@ TEST(Bake, SeamIsContinuous)
         const double l0 = std::floor(lod), f = static_cast<double>(lod) - l0;
         const double h0 = texel_st * std::exp2(l0), h1 = 2.0 * h0;
         const double jump_ref = ((1.0 - f) * h0 * h0 + f * h1 * h1) / 4.0;
-        double jump = 0, jump_phi = 0;
-        for (int k = 0; k < n_phi; ++k) {
-            const double phi = 2.0 * kPi * k / n_phi;  // the axes included: the largest jumps are there
-            const float c = static_cast<float>(std::cos(phi)), s = static_cast<float>(std::sin(phi));
-            const double j = angle_between(sample_dual_paraboloid(map, vec3(c, s, 1e-6f), lod),
-                                           sample_dual_paraboloid(map, vec3(c, s, -1e-6f), lod));
-            if (j > jump) {
-                jump = j;
-                jump_phi = phi;
-            }
-        }
+        const SeamJump sj = seam_jump(map, lod, n_phi);
+        const double jump = sj.max, jump_phi = sj.phi;
         const double seam_mean = seam.sum / static_cast<double>(seam.n);
         const double rim_mean = rim.sum / static_cast<double>(rim.n);
         std::printf(
