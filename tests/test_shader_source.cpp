@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "raykit/shader_source.hpp"
+#include "shader_mem_files.hpp"
 
 using raykit::Error;
 using raykit::ShaderDefine;
@@ -57,23 +58,6 @@ TEST(ShaderSource, ResolvesNestedRelativeIncludes)
 }
 
 namespace {
-// In-memory files through the loader callback; `read` records every path asked for.
-struct MemFiles {
-    std::map<std::string, std::string> files;
-    std::vector<std::string> read;
-    raykit::ShaderLoader loader()
-    {
-        return [this](const std::string& path, std::string& text) {
-            read.push_back(path);
-            const auto it = files.find(path);
-            if (it == files.end()) return false;
-            text = it->second;
-            return true;
-        };
-    }
-    bool was_read(const std::string& p) const { return std::find(read.begin(), read.end(), p) != read.end(); }
-};
-
 // What a driver's preprocessor reports for each output line when every region is active: `#line L
 // F` makes the next line L of string F (GLSL >= 3.30 and ES 3.00, as C). Returns, for each marker
 // "@name:k" found in the output, the (string, line) the driver gives it.

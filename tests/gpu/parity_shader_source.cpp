@@ -12,6 +12,7 @@
 
 #include "parity.hpp"
 #include "raykit/shader_source.hpp"
+#include "shader_mem_files.hpp"
 
 namespace {
 
@@ -52,19 +53,6 @@ bool first_error(const std::string& log, std::string& file, int& line)
     return false;
 }
 
-struct Files {
-    std::map<std::string, std::string> text;
-    raykit::ShaderLoader loader()
-    {
-        return [this](const std::string& path, std::string& out) {
-            const auto it = text.find(path);
-            if (it == text.end()) return false;
-            out = it->second;
-            return true;
-        };
-    }
-};
-
 std::string filler(int n)
 {
     std::string s;
@@ -76,14 +64,14 @@ std::string filler(int n)
 
 TEST(GpuShaderSource, DriverErrorsNameTheRightFileAndLine)
 {
-    Files fs;
+    MemFiles fs;
     // A guarded library, a nested include, a long file only included where the #if is false, and
     // one behind a driver-dependent condition (llvmpipe and every GL 4.5 driver define
     // GL_ARB_compute_shader; nobody defines GL_RK_not_an_extension).
-    fs.text["/s/lib.glsl"] = "#ifndef LIB_GLSL\n#define LIB_GLSL\n#include \"deep.glsl\"\nfloat lib(float x) { return deep(x); }\n#endif\n";
-    fs.text["/s/deep.glsl"] = "#ifndef DEEP_GLSL\n#define DEEP_GLSL\nfloat deep(float x) { return x + 1.0; }\n#endif\n";
-    fs.text["/s/big.glsl"] = filler(1200);
-    fs.text["/s/ext.glsl"] = filler(40);
+    fs.files["/s/lib.glsl"] = "#ifndef LIB_GLSL\n#define LIB_GLSL\n#include \"deep.glsl\"\nfloat lib(float x) { return deep(x); }\n#endif\n";
+    fs.files["/s/deep.glsl"] = "#ifndef DEEP_GLSL\n#define DEEP_GLSL\nfloat deep(float x) { return x + 1.0; }\n#endif\n";
+    fs.files["/s/big.glsl"] = filler(1200);
+    fs.files["/s/ext.glsl"] = filler(40);
     const std::string main_head =
         "#version 450\n"                                    // 1
         "#extension GL_GOOGLE_include_directive : enable\n"  // 2
@@ -123,9 +111,9 @@ TEST(GpuShaderSource, DriverErrorsNameTheRightFileAndLine)
     };
     for (const Case& c : cases) {
         for (const bool unique : {false, true}) {
-            Files f = fs;
-            f.text["/s/main.frag"] = c.main;
-            if (!c.broken_file.empty()) f.text[c.broken_file] = c.broken_text;
+            MemFiles f = fs;
+            f.files["/s/main.frag"] = c.main;
+            if (!c.broken_file.empty()) f.files[c.broken_file] = c.broken_text;
             raykit::ShaderSourceOptions opt;
             opt.loader = f.loader();
             opt.defines = defines;
@@ -153,17 +141,17 @@ TEST(GpuShaderSource, DriverErrorsNameTheRightFileAndLine)
     // include and one inside the include, for old and new versions, with and without defines.
     for (const char* version : {"", "#version 150\n", "#version 330\n", "#version 300 es\nprecision highp float;\n"}) {
         for (const bool with_defines : {false, true}) {
-            Files f;
-            f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
+            MemFiles f;
+            f.files["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
             const std::string head = std::string(version) + "#include \"inc.glsl\"\n";
             const int head_lines = static_cast<int>(std::count(head.begin(), head.end(), '\n'));
             for (const bool error_in_include : {false, true}) {
                 const bool es = std::string(version).find("es") != std::string::npos, legacy = std::string(version).empty();
                 // GLSL 1.10 (no #version) has no `out`: gl_FragColor there.
-                f.text["/s/main.frag"] = head + (legacy ? "// (1.10: gl_FragColor)\n" : es ? "out highp vec4 o;\n" : "out vec4 o;\n") +
+                f.files["/s/main.frag"] = head + (legacy ? "// (1.10: gl_FragColor)\n" : es ? "out highp vec4 o;\n" : "out vec4 o;\n") +
                                          "\nvoid main() { " + (legacy ? "gl_FragColor" : "o") + " = vec4(" +
                                          (error_in_include ? "inc_a(1.0)" : "undefined_in_main") + "); }\n";
-                if (!error_in_include) f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\n";
+                if (!error_in_include) f.files["/s/inc.glsl"] = "float inc_a(float x) { return x; }\n";
                 raykit::ShaderSourceOptions opt;
                 opt.loader = f.loader();
                 opt.unique_line_numbers = true;
@@ -179,13 +167,13 @@ TEST(GpuShaderSource, DriverErrorsNameTheRightFileAndLine)
                 ASSERT_TRUE(first_error(log, file, line)) << what << ": no error location in\n" << log << "\n" << src.text;
                 EXPECT_EQ(file, error_in_include ? "/s/inc.glsl" : "/s/main.frag") << what << "\n" << log;
                 EXPECT_EQ(line, error_in_include ? 2 : head_lines + 3) << what << "\n" << log << "\n" << src.text;
-                f.text["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
+                f.files["/s/inc.glsl"] = "float inc_a(float x) { return x; }\nfloat inc_b(float x) { return x + undefined_in_inc; }\n";
             }
         }
     }
     // The same main file without errors compiles (the resolver's output is valid GLSL).
-    Files f = fs;
-    f.text["/s/main.frag"] = main_head + "void main() { o = vec4(lib(1.0)); }\n";
+    MemFiles f = fs;
+    f.files["/s/main.frag"] = main_head + "void main() { o = vec4(lib(1.0)); }\n";
     raykit::ShaderSourceOptions opt;
     opt.loader = f.loader();
     opt.defines = defines;
