@@ -9,11 +9,29 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "raykit/svo_build.hpp"
+
 namespace svotrace {
+
+/// The trees the trace tests cast rays through: `mesh` voxelised at `depth` with `fill`, the
+/// colour stream only. False with the builder's message in `why`.
+inline bool build_colour_tree(const raykit::SvoMeshData& mesh, int depth, raykit::SvoFill fill, raykit::SvoTree& t,
+                              std::string& why)
+{
+    raykit::SvoBuildOptions opt;
+    opt.depth = depth;
+    opt.fill = fill;
+    opt.attributes = RK_SVO_ATTR_COLOR;
+    raykit::SvoStatus st;
+    const bool ok = raykit::build_svo(mesh.view(), opt, t, st);
+    why = st.message;
+    return ok;
+}
 
 struct Ray {
     glm::vec3 origin;

@@ -263,26 +263,18 @@ TEST(SvoTrace, VoxelisedMeshesAgainstDenseDda)
     builds.push_back({"far torus d8", rkmesh::transformed(rkmesh::torus(32, 16), 1.0, glm::dvec3(3e4, -2e4, 1e4)), 8,
                       SvoFill::surface});
     for (Build& b : builds) {
-        SvoBuildOptions opt;
-        opt.depth = b.depth;
-        opt.fill = b.fill;
-        opt.attributes = RK_SVO_ATTR_COLOR;
         SvoTree t;
-        SvoStatus s;
-        ASSERT_TRUE(build_svo(b.mesh.view(), opt, t, s)) << b.name << ": " << s.message;
+        std::string why;
+        ASSERT_TRUE(svotrace::build_colour_tree(b.mesh, b.depth, b.fill, t, why)) << b.name << ": " << why;
         run_dense(b.name, t, svotrace::make_rays(40000, t.root_min, t.root_size, t.depth, 17));
     }
 }
 
 TEST(SvoTrace, MaxLevelStopsAtCoarseNodes)
 {
-    SvoBuildOptions opt;
-    opt.depth = 9;
-    opt.attributes = RK_SVO_ATTR_COLOR;
     SvoTree t;
-    SvoStatus s;
-    const SvoMeshData mesh = rkmesh::figure();
-    ASSERT_TRUE(build_svo(mesh.view(), opt, t, s)) << s.message;
+    std::string why;
+    ASSERT_TRUE(svotrace::build_colour_tree(rkmesh::figure(), 9, SvoFill::surface, t, why)) << why;
     for (uint32_t level : {0u, 1u, 3u, 6u, 7u, 8u}) {
         char what[48];
         std::snprintf(what, sizeof what, "figure d9 max_level %u", level);

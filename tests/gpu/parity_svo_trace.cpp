@@ -44,13 +44,9 @@ TEST(GpuParity, SvoTraceVoxelisedMeshes)
     builds.push_back({"menger d7 solid", rkmesh::menger_sponge(2), 7, SvoFill::solid});
     builds.push_back({"figure d10", rkmesh::figure(), 10, SvoFill::surface});
     for (Build& b : builds) {
-        SvoBuildOptions opt;
-        opt.depth = b.depth;
-        opt.fill = b.fill;
-        opt.attributes = RK_SVO_ATTR_COLOR;
         SvoTree t;
-        SvoStatus st;
-        ASSERT_TRUE(build_svo(b.mesh.view(), opt, t, st)) << b.name << ": " << st.message;
+        std::string why;
+        ASSERT_TRUE(svotrace::build_colour_tree(b.mesh, b.depth, b.fill, t, why)) << b.name << ": " << why;
         const rk_svo_tree tree = svo_trace_tree(t);
         const std::vector<svotrace::Ray> rays = svotrace::make_rays(30000, t.root_min, t.root_size, t.depth, 99);
         const auto cpu = svotrace_gpu::cpu_trace(t.gpu_words(), tree, rays, glm::vec2(0.0f));

@@ -14,13 +14,9 @@ using namespace raykit;
 TEST(GpuParity, SvoTraceLevelOfDetail)
 {
     static_assert(RK_SVO_TRAVERSE_LOD == 1, "this translation unit tests the LOD build");
-    SvoBuildOptions opt;
-    opt.depth = 10;
-    opt.attributes = RK_SVO_ATTR_COLOR;
     SvoTree t;
-    SvoStatus st;
-    const SvoMeshData mesh = rkmesh::figure();
-    ASSERT_TRUE(build_svo(mesh.view(), opt, t, st)) << st.message;
+    std::string why;
+    ASSERT_TRUE(svotrace::build_colour_tree(rkmesh::figure(), 10, SvoFill::surface, t, why)) << why;
     const rk_svo_tree tree = svo_trace_tree(t);
     const std::vector<uint32_t> words = t.gpu_words();
     const std::vector<svotrace::Ray> rays = svotrace::make_rays(30000, t.root_min, t.root_size, t.depth, 5);

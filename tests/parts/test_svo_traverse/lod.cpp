@@ -27,13 +27,9 @@ bool svo_trace_default_build(const SvoTree& t, glm::vec3 origin, glm::vec3 dir, 
 TEST(SvoTraceLod, StopsAtTheFootprintAndAgreesWithTheOracle)
 {
     static_assert(RK_SVO_TRAVERSE_LOD == 1, "this translation unit tests the LOD build");
-    SvoBuildOptions opt;
-    opt.depth = 9;
-    opt.attributes = RK_SVO_ATTR_COLOR;
     SvoTree t;
-    SvoStatus s;
-    const SvoMeshData mesh = rkmesh::figure();
-    ASSERT_TRUE(build_svo(mesh.view(), opt, t, s)) << s.message;
+    std::string why;
+    ASSERT_TRUE(svotrace::build_colour_tree(rkmesh::figure(), 9, SvoFill::surface, t, why)) << why;
     const rk_svo_tree tree = svo_trace_tree(t);
     const std::vector<uint32_t> words = t.gpu_words();
     // Occupancy at every level (a node exists iff some voxel below it does).
