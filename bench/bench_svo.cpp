@@ -46,6 +46,7 @@
 #endif
 
 #include "bench_common.hpp"
+#include "proc_memory.hpp"
 #include "raykit/svo_build.hpp"
 #include "reference/svo_meshes.hpp"
 
@@ -78,47 +79,8 @@ std::string env(const char* name)
 // Process memory (Linux): the peak resident set can be reset (clear_refs 5) and read (VmHWM), so the
 // rise of the peak over one build is measured independently of the builder's own accounting.
 
-uint64_t status_kb(const char* key)
-{
-#if defined(__linux__)
-    FILE* f = std::fopen("/proc/self/status", "r");
-    if (!f) return 0;
-    char line[256];
-    const size_t n = std::strlen(key);
-    uint64_t kb = 0;
-    while (std::fgets(line, sizeof line, f)) {
-        if (std::strncmp(line, key, n) == 0 && line[n] == ':') {
-            kb = std::strtoull(line + n + 1, nullptr, 10);
-            break;
-        }
-    }
-    std::fclose(f);
-    return kb;
-#else
-    (void)key;
-    return 0;
-#endif
-}
-
-uint64_t mem_available_bytes()
-{
-#if defined(__linux__)
-    FILE* f = std::fopen("/proc/meminfo", "r");
-    if (!f) return 0;
-    char line[256];
-    uint64_t kb = 0;
-    while (std::fgets(line, sizeof line, f)) {
-        if (std::strncmp(line, "MemAvailable:", 13) == 0) {
-            kb = std::strtoull(line + 13, nullptr, 10);
-            break;
-        }
-    }
-    std::fclose(f);
-    return kb * 1024u;
-#else
-    return 0;
-#endif
-}
+uint64_t status_kb(const char* key) { return rkbench_mem::proc_kb("/proc/self/status", key); }
+using rkbench_mem::mem_available_bytes;
 
 /// Frees what the allocator caches and resets the peak resident set; returns the current resident
 /// set in bytes (0 when the peak cannot be reset, then no RSS figure is reported).

@@ -25,6 +25,7 @@
 #include <openvdb/tools/RayIntersector.h>
 #include <tbb/task_arena.h>
 
+#include "../proc_memory.hpp"
 #include "trace_harness.hpp"
 
 namespace rktrace {
@@ -33,21 +34,7 @@ namespace {
 constexpr float kHalfWidth = 3.0f;
 constexpr double kBytesPerBandVoxel = 16.0;  // grid values and topology plus meshToVolume's temporaries
 
-std::uint64_t mem_available_bytes()
-{
-    std::uint64_t kb = 0;
-    if (FILE* f = std::fopen("/proc/meminfo", "r")) {
-        char line[256];
-        while (std::fgets(line, sizeof line, f)) {
-            if (std::strncmp(line, "MemAvailable:", 13) == 0) {
-                kb = std::strtoull(line + 13, nullptr, 10);
-                break;
-            }
-        }
-        std::fclose(f);
-    }
-    return kb * 1024u;
-}
+using rkbench_mem::mem_available_bytes;
 
 double memory_limit_bytes()
 {
