@@ -90,6 +90,17 @@ std::vector<parity::Case> interior_shading_cases()
     const std::vector<Domain> furn_in = {coord(), coord(), coord(), coord(), coord(), coord(),
                                          dom::signed_unit(), dom::signed_unit(), depth(), size(), size()};
     std::vector<parity::Case> cases = {
+        // ---- interior_params.glsl: the defaults of the material's parameter structs (constants, so
+        // the input only varies which fields are read).
+        RK_PARITY("rk_im_*_default", "raykit/interior_params.glsl", (dom::unit()), 12,
+                  rk_im_window_params p = rk_im_window_params_default();
+                  rk_im_building_frame fr = rk_im_building_frame_default();
+                  rk_im_building_vertex v = rk_im_building_vertex_default();
+                  int k = int(clamp(a[0], 0.0f, 1.0f) * 2.99f);  // 0..2 for every (finite) input
+                  o[0] = p.grid.room_size[k]; o[1] = p.atlas[k]; o[2] = p.light_warm[k]; o[3] = p.glass_tint[k];
+                  o[4] = float(p.seed) + float(p.flipbook[k]) + p.furniture_depth[k]; o[5] = p.unlit + p.glass_eta;
+                  o[6] = fr.facade_color[k]; o[7] = fr.sky_color[k]; o[8] = fr.reinhard_white + fr.exposure;
+                  o[9] = v.sun_dir[k]; o[10] = v.ambient[k]; o[11] = v.clip_from_world[k][k] + v.uv_scale.x;),
         // ---- interior_furniture.glsl
         RK_PARITY("rk_im_furniture_unit", F, (big(), big(), big()), 3,
                   vec3 u = rk_im_furniture_unit(vec3(a[0], a[1], a[2]), vec3(0.0f, 0.0f, 1.0f));
