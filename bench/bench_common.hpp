@@ -30,11 +30,16 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -227,27 +232,138 @@ struct Info {
     std::string flags = {};  // optional comma list, e.g. "cross"
 };
 
-/// Registers BM_<suite>/<variant>/<params>: times `fn(input)` over `inputs` and attaches `acc`.
+// ---------------------------------------------------------------------------------------------
+// Paired timing.
+//
+// A "pass" runs one function over its kInputs pre-generated inputs, keeping each result alive with
+// sink(); a row's *harness* pass is the same loop sinking each input unchanged (the loads and the
+// loop every call pays). Every benchmark registered by add_bench times, in each of
+// its iterations, four passes back to back: its own function, its harness, the suite's baseline
+// function (SuiteInfo::baseline) and the baseline's harness, in an order that rotates so that no
+// pass always runs first or after the same other pass. Each iteration gives one paired sample; the
+// counters are medians over the iterations:
+//   time_per_call              own pass (the manual time Google Benchmark reports), seconds per call
+//   harness_per_call           own harness pass, seconds per call
+//   baseline_per_call          baseline pass, seconds per call
+//   baseline_harness_per_call  baseline's harness pass, seconds per call
+//   rel_cost                   (own - own harness) / (baseline - baseline harness) per iteration
+//   rel_cost_gross             own / baseline, harnesses included
+// A machine that slows down for a while slows the three passes of an iteration alike, so the
+// ratios survive what absolute times do not; --benchmark_repetitions then gives the run-to-run
+// spread of each ratio (scripts/bench_report.py shows the median and the range of repetitions).
+
+/// Keeps a pass's result alive without a memory round trip: floats and integers stay in a register
+/// (an empty asm that takes them as a register operand), GLM vectors component by component; other
+/// types fall back to benchmark::DoNotOptimize, which stores to memory and clobbers it. (With
+/// DoNotOptimize alone every call paid a store, a reload and a compiler barrier, a fixed cost of
+/// several cycles that compressed every ratio.)
+template <class T>
+inline void sink(const T& v)
+{
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    if constexpr (std::is_same<T, float>::value || std::is_same<T, double>::value) {
+        asm volatile("" : : "x"(v));
+    } else if constexpr (std::is_integral<T>::value || std::is_enum<T>::value) {
+        asm volatile("" : : "r"(v));
+    } else if constexpr (std::is_same<T, raykit::vec2>::value || std::is_same<T, raykit::vec3>::value ||
+                         std::is_same<T, raykit::vec4>::value) {
+        for (int i = 0; i < T::length(); ++i) sink(v[i]);
+    } else {
+        benchmark::DoNotOptimize(v);
+    }
+#else
+    benchmark::DoNotOptimize(v);
+#endif
+}
+
+using PassFn = std::function<void()>;
+
+struct Passes {
+    PassFn own, harness;
+};
+
+/// Every add_bench row's passes by benchmark name (filled at registration, before anything runs).
+inline std::map<std::string, Passes>& pass_registry()
+{
+    static std::map<std::string, Passes> m;
+    return m;
+}
+
+inline double median_of(std::vector<double> v)
+{
+    if (v.empty()) return 0.0;
+    const std::size_t mid = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+    const double hi = v[mid];
+    if (v.size() % 2 == 1) return hi;
+    return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+/// Runs the own pass, the baseline's pass and both harnesses once each per iteration in rotating
+/// order (see above); sets the iteration's manual time to the own pass and the paired counters.
+/// `n` = calls per pass.
+inline void run_paired(benchmark::State& st, const Passes& own, const Passes& base, std::size_t n)
+{
+    using clock = std::chrono::steady_clock;
+    // The four cyclic rotations and their reversals: each pass runs first, last, and before and
+    // after each other pass equally often.
+    static const int kOrders[8][4] = {{0, 1, 2, 3}, {1, 2, 3, 0}, {2, 3, 0, 1}, {3, 0, 1, 2},
+                                      {3, 2, 1, 0}, {0, 3, 2, 1}, {1, 0, 3, 2}, {2, 1, 0, 3}};
+    const PassFn* pass[4] = {&own.own, &own.harness, &base.own, &base.harness};
+    std::vector<double> t_own, t_h, t_base, t_bh, rel, rel_gross;
+    std::size_t k = 0;
+    for (auto _ : st) {
+        double t[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int j = 0; j < 4; ++j) {
+            const int w = kOrders[k % 8][j];
+            const auto t0 = clock::now();
+            (*pass[w])();
+            const auto t1 = clock::now();
+            t[w] = std::chrono::duration<double>(t1 - t0).count();
+        }
+        ++k;
+        st.SetIterationTime(t[0]);
+        t_own.push_back(t[0]);
+        t_h.push_back(t[1]);
+        t_base.push_back(t[2]);
+        t_bh.push_back(t[3]);
+        rel_gross.push_back(t[2] > 0.0 ? t[0] / t[2] : 0.0);
+        if (t[2] - t[3] > 0.0) rel.push_back((t[0] - t[1]) / (t[2] - t[3]));
+    }
+    const double per = 1.0 / static_cast<double>(n);
+    st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(n));
+    st.counters["time_per_call"] = median_of(t_own) * per;
+    st.counters["harness_per_call"] = median_of(t_h) * per;
+    st.counters["baseline_per_call"] = median_of(t_base) * per;
+    st.counters["baseline_harness_per_call"] = median_of(t_bh) * per;
+    st.counters["rel_cost"] = median_of(rel);
+    st.counters["rel_cost_gross"] = median_of(rel_gross);
+}
+
+/// Registers BM_<suite>/<variant>/<params>: times `fn(input)` over `inputs`, paired with the suite's
+/// baseline and the harness (run_paired), and attaches `acc`.
 template <class In, class Fn>
 void add_bench(const Info& info, const Accuracy& acc, std::vector<In> inputs, Fn fn)
 {
     const std::string name = "BM_" + current_suite().info.name + "/" + info.variant + "/" + info.params;
+    const std::string baseline = current_suite().info.baseline;
     std::string label = info.family + "|" + info.function + "|" + info.against;
     if (!info.flags.empty()) label += "|" + info.flags;
+    const auto in = std::make_shared<const std::vector<In>>(std::move(inputs));
+    Passes p;
+    p.own = [in, fn]() {
+        for (const In& x : *in) sink(fn(x));
+    };
+    p.harness = [in]() {
+        for (const In& x : *in) sink(x);
+    };
+    pass_registry()[name] = p;
+    const std::size_t n = in->size();
     benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
-        const In* in = inputs.data();
-        const std::size_t n = inputs.size();
-        for (auto _ : st) {
-            for (std::size_t i = 0; i < n; ++i) {
-                auto r = fn(in[i]);
-                benchmark::DoNotOptimize(r);
-            }
-        }
-        st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(n));
-        // n calls per iteration as a rate, inverted: seconds per call (the console shows "ns").
-        st.counters["time_per_call"] = benchmark::Counter(static_cast<double>(n),
-                                                        benchmark::Counter::kIsIterationInvariantRate |
-                                                            benchmark::Counter::kInvert);
+        const auto& reg = pass_registry();
+        const auto b = reg.find(baseline);
+        // Without a registered baseline (another suite's style), the row is paired with itself.
+        run_paired(st, p, b != reg.end() ? b->second : p, n);
         st.counters["max_abs_err"] = acc.max_abs;
         st.counters["mean_abs_err"] = acc.mean_abs();
         if (acc.has_ulp) st.counters["max_ulp"] = acc.max_ulp;
@@ -259,7 +375,7 @@ void add_bench(const Info& info, const Accuracy& acc, std::vector<In> inputs, Fn
             st.counters["worst_at"] = acc.worst_at;
         }
         st.SetLabel(label);
-    });
+    })->UseManualTime();
 }
 
 }  // namespace rkbench

@@ -77,18 +77,42 @@ class Row:
         self.entry = entry  # every field and counter, for sections that read their own (octree build)
         self.cv = None  # relative run-to-run spread of the time, when repetitions were aggregated
         self.reps = 1
+        # Paired timing (bench_common.hpp run_paired): (median, min, max) over the repetitions.
+        self.rel = None        # own / baseline, harness subtracted from both
+        self.rel_gross = None  # own / baseline, harness included
+        self.harness_ns = None
         # Registration order (stable even with --benchmark_enable_random_interleaving).
         self.order = (entry.get("family_index", 0), entry.get("per_family_instance_index", 0))
+        self.add_paired([entry])
+
+    def add_paired(self, runs):
+        self.rel = paired_stats(runs, "rel_cost")
+        self.rel_gross = paired_stats(runs, "rel_cost_gross")
+        h = paired_stats(runs, "harness_per_call")
+        self.harness_ns = h[0] * 1e9 if h else None
 
 
 def ns_per_call(entry):
+    tpc = entry.get("time_per_call")  # the median of the timed passes (bench_common.hpp)
+    if tpc:
+        return tpc * 1e9
     ips = entry.get("items_per_second")
     if ips:
         return 1e9 / ips
-    tpc = entry.get("time_per_call")
-    if tpc:
-        return tpc * 1e9
     return None
+
+
+def strip_manual(name):
+    """Google Benchmark appends "/manual_time" to rows timed by hand (the paired rows)."""
+    return name[:-len("/manual_time")] if name.endswith("/manual_time") else name
+
+
+def paired_stats(runs, key):
+    """(median, min, max) of a paired counter over the repetitions, or None."""
+    vals = [r[key] for r in runs if r.get(key) is not None]
+    if not vals:
+        return None
+    return statistics.median(vals), min(vals), max(vals)
 
 
 def load(path):
@@ -104,7 +128,7 @@ def load(path):
     for e in entries:
         if e.get("error_occurred"):
             continue
-        run = e.get("run_name", e.get("name", ""))
+        run = strip_manual(e.get("run_name", e.get("name", "")))
         if run not in order:
             order.append(run)
         if e.get("run_type") == "aggregate":
@@ -118,13 +142,7 @@ def load(path):
 
     rows = []
     for run in order:
-        if run in medians:
-            row = Row(run, medians[run])
-            row.reps = medians[run].get("repetitions", 1)
-            cv = cvs.get(run)
-            if cv is not None and cv.get("cpu_time") is not None:
-                row.cv = cv["cpu_time"]  # a fraction (aggregate_unit "percentage")
-        elif run in iterations:
+        if run in iterations and len(iterations[run]) > 1 or run in iterations and run not in medians:
             runs = iterations[run]
             row = Row(run, runs[0])
             times = [t for t in (ns_per_call(r) for r in runs) if t is not None]
@@ -132,6 +150,13 @@ def load(path):
             row.reps = len(runs)
             if len(times) > 1 and row.ns:
                 row.cv = statistics.stdev(times) / statistics.mean(times)
+            row.add_paired(runs)
+        elif run in medians:
+            row = Row(run, medians[run])
+            row.reps = medians[run].get("repetitions", 1)
+            cv = cvs.get(run)
+            if cv is not None and cv.get("cpu_time") is not None:
+                row.cv = cv["cpu_time"]  # a fraction (aggregate_unit "percentage")
         else:
             continue
         rows.append(row)
@@ -146,7 +171,7 @@ def load_errors(path):
     out = []
     for e in data.get("benchmarks", []):
         if e.get("error_occurred"):
-            run = e.get("run_name", e.get("name", ""))
+            run = strip_manual(e.get("run_name", e.get("name", "")))
             if run not in [r for r, _ in out]:
                 out.append((run, e.get("error_message", "")))
     return out
@@ -235,6 +260,20 @@ def fmt_ns(row):
     return s
 
 
+def fmt_rel(row, base):
+    """Relative cost: the paired, harness-subtracted ratio (median of repetitions, with their range);
+    for JSON without paired counters, the ratio of the two rows' times."""
+    if row.rel is not None:
+        med, lo, hi = row.rel
+        if hi < 0.05:
+            return "< 0.05 (harness level)"
+        s = "%.2f" % med
+        if row.reps > 1:
+            s += " (%.2f–%.2f)" % (lo, hi)
+        return s
+    return "%.2f" % (row.ns / base.ns) if (base and row.ns and base.ns) else "—"
+
+
 def fmt_function(text):
     # "rk_x(a, b) [note]" -> `rk_x(a, b)` note
     if "[" in text:
@@ -288,7 +327,8 @@ def machine_table(context, rows):
     add("Google Benchmark library build type", "%s (the harness library as packaged, not the measured code)"
         % context.get("library_build_type", "?"))
     reps = max((r.reps for r in rows), default=1)
-    add("repetitions", "%d (median shown; ± is the run-to-run coefficient of variation)" % reps if reps > 1 else "1")
+    add("repetitions", "%d, randomly interleaved (median shown; ± and ranges are the run-to-run spread)" % reps
+        if reps > 1 else "1")
     add("calls per iteration", context.get("raykit_inputs_per_iteration", "?"))
     add("accuracy sweep points", context.get("raykit_sweep_points", "?"))
     return lines
@@ -975,7 +1015,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     md.append("")
     md.append("<!-- Generated by scripts/bench_report.py from raykit_bench's JSON. Do not edit by hand. -->")
     md.append("")
-    md.append("Reproduce with `bash scripts/bench.sh` (Release build of %s, 3 repetitions, then "
+    md.append("Reproduce with `bash scripts/bench.sh` (Release build of %s, 5 repetitions, then "
               "`python3 scripts/bench_report.py --json build/bench.json --out-dir docs`, which rewrites this "
               "file%s)." % (
                   ", ".join("`%s`" % s for s in sources) if sources else "`bench/bench_*.cpp`",
@@ -993,11 +1033,24 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     md.append("")
     md.append("## How to read the tables")
     md.append("")
-    md.append("- **ns/call** (ns/pixel where a call processes a pixel): CPU time per call, throughput over a "
-              "pre-generated array of independent inputs. Only the *ratios* between rows mean anything; "
-              "absolute CPU times are not the point (see [GPU figures](#gpu-figures)).")
-    md.append("- **relative cost**: ns/call divided by that of the section's baseline (named at the top of each "
-              "section) = 1.0.")
+    md.append("- **ns/call** (ns/pixel where a call processes a pixel): CPU time per call, the median over the "
+              "iterations of a pass over a pre-generated array of independent inputs, harness included; ± is the "
+              "run-to-run coefficient of variation over the repetitions. Only the *ratios* between rows mean "
+              "anything; absolute CPU times are not the point (see [GPU figures](#gpu-figures)).")
+    md.append("- **relative cost**: the cost of a call relative to the section's baseline (named at the top of "
+              "each section) = 1.0, measured *paired*: every benchmark iteration times three passes over the same "
+              "4096 inputs back to back, in rotating order: the row's function, the baseline and the *harness* "
+              "(the same loop returning each input unchanged). The ratio (row − harness) / (baseline − harness) "
+              "is taken per iteration and its median kept, so a slow patch of the machine, which slows the three "
+              "passes alike, cancels. Shown: the median over the repetitions, and in brackets their range (the "
+              "run-to-run spread of this build). Each section states its harness cost.")
+    md.append("- **gross**: the same paired ratio with the harnesses left in (median of repetitions). On an "
+              "out-of-order CPU a function's work partly overlaps its harness's loads and stores, so the truth "
+              "lies between the two columns; for the cheapest rows (a few cycles per call) they differ most.")
+    md.append("- **Rebuilds are not reruns.** Runs of one build agree within the bracketed ranges; a rebuild "
+              "that only moves code (another file edited, another compiler) can shift the cheapest rows by about "
+              "a cycle per call (the timed loops are aligned to 64 bytes, `-falign-loops=64`, to limit this), so "
+              "compare rows of one report, not reports of different builds.")
     md.append("- **max / mean abs err**: absolute error against float64 references over a dense sweep of the "
               "input range, computed once outside the timing; each section says which references.")
     md.append("- **max ulp**: only where meaningful (exact functions whose result stays away from zero); "
@@ -1018,6 +1071,12 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
                 suite.baseline.name, suite.baseline.function.split("[")[0].strip()))
         else:
             intro.append("Relative cost: not available (baseline `%s` not in this run)." % suite.baseline_name)
+        hs = [r.harness_ns for r in suite.rows if r.harness_ns]
+        if hs and suite.baseline and suite.baseline.ns:
+            h = statistics.median(hs)
+            intro.append("Harness (loop, input load, result store): %.2f ns/%s, median over the rows (%.2f to %.2f), "
+                         "%.0f %% of the baseline's time; subtracted from every relative cost." % (
+                             h, suite.per(), min(hs), max(hs), 100.0 * h / suite.baseline.ns))
         md.append(" ".join(intro))
         md.append("")
         if suite.about:
@@ -1041,15 +1100,16 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
             if rest:
                 md.append(paragraph(rest))
                 md.append("")
-            md.append("| function | benchmark | ns/%s | relative cost | max abs err | mean abs err | max ulp | worst at "
-                      "| error against |" % suite.per())
-            md.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
+            md.append("| function | benchmark | ns/%s | relative cost | gross | max abs err | mean abs err | max ulp "
+                      "| worst at | error against |" % suite.per())
+            md.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
             for r in fam_rows:
-                rel = "%.2f" % (r.ns / base.ns) if (base and r.ns) else "—"
-                md.append("| %s | `%s` | %s | %s | %s | %s | %s | %s | %s |" % (
+                rel = fmt_rel(r, base)
+                md.append("| %s | `%s` | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     md_escape(fmt_function(r.function)),
                     md_escape(r.variant + ("/" + r.params if r.params else "")),
-                    fmt_ns(r), rel, fmt_err(r.max_abs), fmt_err(r.mean_abs),
+                    fmt_ns(r), rel, "%.2f" % r.rel_gross[0] if r.rel_gross else "—",
+                    fmt_err(r.max_abs), fmt_err(r.mean_abs),
                     "%.1f" % r.max_ulp if r.max_ulp is not None else "—",
                     fmt_worst(r),
                     md_escape(r.against)))
