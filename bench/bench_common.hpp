@@ -182,6 +182,9 @@ struct SuiteInfo {
     std::vector<std::string> plot_families;  // families drawn on the speed-vs-error plot
     std::string about;     // Markdown: what the rows measure, how errors are taken, etc.
     std::string gpu;       // Markdown: how the CPU figures relate to a GPU
+    // Goals the report checks, ';'-separated "<row>|<max abs err>|<max relative cost>|<what>", e.g.
+    // "BM_fresnel/poly/eta:1.52|0.005|1.3|glass"; the report says met or missed with both numbers.
+    std::string goals = {};
 };
 
 struct Suite {

@@ -1006,6 +1006,27 @@ def svo_trace_summary(out_dir):
     return md
 
 
+def goal_lines(context, suite):
+    """The suite's goals (raykit_suite:<s>:goals, see SuiteInfo::goals), each said met or missed with
+    its error and its paired relative cost (median and range of repetitions)."""
+    spec = context.get("raykit_suite:%s:goals" % suite.name, "")
+    out = []
+    for item in [g for g in spec.split(";") if g.strip()]:
+        name, max_err, max_rel, what = (item.split("|") + ["", "", "", ""])[:4]
+        row = next((r for r in suite.rows if r.name == name), None)
+        head = "- Goal: max abs error <= %s at <= %sx the baseline's cost, %s (`%s`): " % (max_err, max_rel, what, name)
+        if row is None or row.rel is None or row.max_abs is None:
+            out.append(head + "not measured in this run.")
+            continue
+        med, lo, hi = row.rel
+        ok = row.max_abs <= float(max_err) and med <= float(max_rel)
+        out.append(head + "**%s** (error %.2g, cost %.2fx, %.2f to %.2f over the repetitions)." % (
+            "met" if ok else "missed", row.max_abs, med, lo, hi))
+    if out:
+        out.append("")
+    return out
+
+
 def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     pngs_written = [os.path.basename(p) for p in pngs.values() if p]
     sources = [s.source for s in suites if s.source]
@@ -1079,6 +1100,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
                              h, suite.per(), min(hs), max(hs), 100.0 * h / suite.baseline.ns))
         md.append(" ".join(intro))
         md.append("")
+        md.extend(goal_lines(context, suite))
         if suite.about:
             md.append(suite.about)
             md.append("")

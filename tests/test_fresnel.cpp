@@ -326,6 +326,48 @@ TEST(Fresnel, SchlickAndFastErrorAgainstExact)
     }
 }
 
+TEST(Fresnel, PolyErrorAgainstExact)
+{
+    // rk_fresnel_dielectric_poly with rk_fresnel_poly_params: the documented maxima, F0 exact, the
+    // range [0, 1], and the helper's own error report, against the float64 reference over 200001
+    // cosines (a denser grid than the helper's 4097).
+    struct Case {
+        float eta;
+        double bound;  // documented max abs error (fresnel.glsl), with the last digit rounded up
+    };
+    const Case cases[] = {{1.2f, 5.4e-3},  {1.25f, 4.9e-3}, {1.33f, 3.7e-3}, {1.52f, 3.4e-3},
+                          {1.8f, 4.9e-3},  {2.0f, 4.8e-3},  {2.05f, 4.95e-3}, {2.5f, 7.3e-3}};
+    for (const Case& cs : cases) {
+        const FresnelPolyParams p = rk_fresnel_poly_params(cs.eta);
+        ErrorStats poly, schlick;
+        const float f0 = rk_f0_from_eta(cs.eta);
+        for (int i = 0; i <= 200000; ++i) {
+            const float c = static_cast<float>(i) / 200000.0f;
+            const float r = rk_fresnel_dielectric_poly(c, p.p0, p.p1);
+            ASSERT_GE(r, 0.0f);
+            ASSERT_LE(r, 1.0f);
+            poly.add(r, ref::fresnel(c, cs.eta), fmt("cos", c));
+            schlick.add(rk_fresnel_schlick(c, f0), ref::fresnel(c, cs.eta), fmt("cos", c));
+        }
+        std::printf("eta %.2f: poly %s (helper says %.3e)\n", static_cast<double>(cs.eta), poly.str().c_str(),
+                    static_cast<double>(p.max_abs_error));
+        EXPECT_LT(poly.max_abs, cs.bound);
+        EXPECT_NEAR(poly.max_abs, static_cast<double>(p.max_abs_error), 0.02 * poly.max_abs);
+        EXPECT_LT(poly.max_abs * 6.0, schlick.max_abs);
+        EXPECT_NEAR(rk_fresnel_dielectric_poly(1.0f, p.p0, p.p1), ref::fresnel(1.0, cs.eta), 2e-7);  // F0 exact
+    }
+    // Near eta = 1 no quartic follows the jump at grazing; the helper says so.
+    EXPECT_GT(rk_fresnel_poly_params(1.05f).max_abs_error, 0.02f);
+    // eta below 1 (internal reflection) is clamped to 1; huge eta to 64. Outputs stay in [0, 1].
+    for (float eta : {0.0f, 0.5f, 1.0f, 64.0f, 1e30f, std::numeric_limits<float>::quiet_NaN()}) {
+        const FresnelPolyParams p = rk_fresnel_poly_params(eta);
+        for (float c : {-1.0f, 0.0f, 1e-30f, 0.25f, 1.0f, 2.0f}) {
+            const float r = rk_fresnel_dielectric_poly(c, p.p0, p.p1);
+            EXPECT_TRUE(r >= 0.0f && r <= 1.0f) << eta << " " << c << " " << r;
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Properties.
 

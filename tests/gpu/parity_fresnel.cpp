@@ -43,6 +43,14 @@ std::vector<parity::Case> fresnel_cases()
                   o[0] = rk_fresnel_dielectric_fast(a[0], rk_fresnel_fast_params(a[1]));),
         RK_PARITY("rk_fresnel_dielectric_fast(float,float)", F, (dom::cosine(), dom::eta()), 1,
                   o[0] = rk_fresnel_dielectric_fast(a[0], a[1]);),
+        // Constants of rk_fresnel_poly_params(1.52) (a C++-only helper), then arbitrary constants.
+        RK_PARITY("rk_fresnel_dielectric_poly(glass)", F, (dom::cosine()), 1,
+                  o[0] = rk_fresnel_dielectric_poly(a[0], vec4(0.04258f, 0.954106f, -4.5249f, 10.1282f),
+                                                    vec2(-11.4591f, 5.03045f));),
+        RK_PARITY("rk_fresnel_dielectric_poly", F,
+                  (dom::cosine(), dom::unit(), dom::range(-20.0f, 20.0f), dom::range(-20.0f, 20.0f),
+                   dom::range(-20.0f, 20.0f), dom::range(-20.0f, 20.0f), dom::range(-20.0f, 20.0f)), 1,
+                  o[0] = rk_fresnel_dielectric_poly(a[0], vec4(a[1], a[2], a[3], a[4]), vec2(a[5], a[6]));),
         RK_PARITY("rk_fresnel_conductor(float,vec3,vec3)", F,
                   (dom::cosine(), dom::range(0.05f, 4.0f), dom::range(0.0f, 8.0f), dom::range(0.05f, 4.0f), dom::range(0.0f, 8.0f)), 3,
                   vec3 r = rk_fresnel_conductor(a[0], vec3(a[1], a[3], 1.0f), vec3(a[2], a[4], 0.0f));
