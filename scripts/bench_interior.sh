@@ -6,16 +6,19 @@
 # Usage: bash scripts/bench_interior.sh [extra bench_interior_gl arguments]
 # Environment: BENCH_INTERIOR_BUILD (build folder, default build), BENCH_INTERIOR_WIDTH /
 # BENCH_INTERIOR_HEIGHT (default 1024 x 768, the thesis's resolution), BENCH_INTERIOR_ROUNDS
-# (measured frames per configuration, default 31), BENCH_INTERIOR_REPORT_ONLY=1 (rewrite the
+# (measured frames per configuration, default 48), BENCH_INTERIOR_POSES (camera poses on the path,
+# default 8: the rounds sweep them 6 times, and the report gives every ratio's range over the
+# sweeps as its run-to-run spread), BENCH_INTERIOR_REPORT_ONLY=1 (rewrite the
 # document from the last results without building or running). On Mesa llvmpipe with 2 cores the
-# run takes about three minutes.
+# run takes about four minutes.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 BUILD="${BENCH_INTERIOR_BUILD:-build}"
 WIDTH="${BENCH_INTERIOR_WIDTH:-1024}"
 HEIGHT="${BENCH_INTERIOR_HEIGHT:-768}"
-ROUNDS="${BENCH_INTERIOR_ROUNDS:-31}"
+ROUNDS="${BENCH_INTERIOR_ROUNDS:-48}"
+POSES="${BENCH_INTERIOR_POSES:-8}"
 DOC=docs/benchmarks_interior.md
 OUT="$BUILD/bench_interior"
 
@@ -24,7 +27,7 @@ mkdir -p "$OUT" docs/img
 if [[ "${BENCH_INTERIOR_REPORT_ONLY:-0}" != 1 ]]; then
   cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON >/dev/null
   cmake --build "$BUILD" --target bench_interior_gl -j2
-  "$BENCH" --width "$WIDTH" --height "$HEIGHT" --rounds "$ROUNDS" --warmup 2 \
+  "$BENCH" --width "$WIDTH" --height "$HEIGHT" --rounds "$ROUNDS" --poses "$POSES" --warmup 2 \
     --json "$OUT/results.json" --csv "$OUT/results.csv" --md "$OUT/table.md" \
     --png docs/img/bench_interior_materials.png "$@" | tee "$OUT/console.txt"
 fi
@@ -123,9 +126,10 @@ graphics*, Master's thesis, Utrecht University, 2009, §5.3): one mesh
 holding an 8 x 8 grid of box buildings, each the thesis's test building (6 x 6 windows, 31 floors:
 24 x 93 x 24 units, rooms of 4 x 3 x 4, 1,116 rooms per building), 16-unit streets, one draw call
 per pass. The camera flies down a street at 28-52 units of height, turning a full circle and
-pitching over the path; measured frame *r* of every configuration uses camera pose *r*, and the
-configurations are interleaved frame by frame, so a slow patch of the (shared) machine hits all of
-them alike. Buildings cover about 90 % of the screen (the fragment column with a pre-pass counts
+pitching over the path; measured frame *r* of every configuration uses camera pose *r* mod *P*
+(*P* poses, swept several times: each sweep's median ratio is one repeat, and their range is the
+run-to-run spread the summary quotes), and the configurations are interleaved frame by frame, so a
+slow patch of the (shared) machine hits all of them alike. Buildings cover about 90 % of the screen (the fragment column with a pre-pass counts
 the visible pixels; without it, the shaded fragments, i.e. overdraw about 1.5). No sky or ground
 is drawn (the clear is not timed), so the ratios are those of the materials themselves.
 
@@ -184,34 +188,72 @@ def ms(n): return cfg[n][tkey]["median"] if n in cfg else None
 def median(v):
     v = sorted(v); n = len(v)
     return 0.5 * (v[(n - 1) // 2] + v[n // 2]) if n else float("nan")
+ka = tkey + "_per_round"
+R = r["rounds"]
+P = r.get("poses", R) or R
+S = max(R // P, 1)  # sweeps over the same camera poses
+def sweeps(vals):
+    return [vals[i * P:(i + 1) * P] for i in range(S)] if S > 1 else [vals]
 def paired(a, b):
     # median over rounds of a[r] / b[r]: both configurations rendered camera pose r in round r.
-    ka = tkey + "_per_round"
     return median([x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])])
+def paired3(a, b):
+    # (median over all rounds, min and max of the per-sweep medians): the run-to-run spread.
+    rat = [x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])]
+    per = [median(v) for v in sweeps(rat)]
+    return median(rat), min(per), max(per)
+def fmt3(t, pct=False):
+    m, lo, hi = t
+    if pct:
+        return f"{100*(m-1):+.0f} % ({100*(lo-1):+.0f} to {100*(hi-1):+.0f} %)" if S > 1 else f"{100*(m-1):+.0f} %"
+    return f"{m:.2f}x ({lo:.2f} to {hi:.2f})" if S > 1 else f"{m:.2f}x"
+def slope(points):
+    # least-squares slope of y over x
+    n = len(points); mx = sum(x for x, _ in points) / n; my = sum(y for _, y in points) / n
+    sxx = sum((x - mx) ** 2 for x, _ in points)
+    return sum((x - mx) * (y - my) for x, y in points) / sxx if sxx > 0 else 0.0
+import math
 out = []
-out.append(f"Summary ({clock}, median of per-frame ratios to the plain material):")
+spread_note = (f"in brackets the range of the medians of the {S} sweeps over the same {P} camera poses (the run-to-run spread)"
+               if S > 1 else "one sweep over the camera poses, so no spread is available")
+out.append(f"Summary ({clock}, median of per-frame ratios to the plain material; {spread_note}):")
 out.append("")
 for m, label in [("thesis", "thesis port"), ("rk_min", "raykit minimal (four textures, as the thesis)"),
                  ("rk_min+array", "raykit minimal with the texture array (the recommended mode)"),
                  ("rk_full", "raykit full-featured")]:
     if m not in cfg: continue
     pre = m + " +prepass"
-    line = f"- **{label}**: {ratio(m):.2f}x plain"
-    if pre in cfg:
-        gain = paired(m, pre) - 1.0
-        line += f"; with a depth pre-pass {ratio(pre):.2f}x plain-with-pre-pass, and {100*gain:+.0f} % frame rate over itself without it"
+    t = paired3(m, "plain")
+    line = f"- **{label}**: {fmt3(t)} plain"
+    if pre in cfg and "plain +prepass" in cfg:
+        line += f"; with a depth pre-pass {fmt3(paired3(pre, 'plain +prepass'))} plain-with-pre-pass, and {fmt3(paired3(m, pre), True)} frame rate over itself without it"
     if m == "rk_full":
-        line += " (goal: <= 2x)" + (" — **goal met**" if ratio(m) <= 2.0 else " — **goal not met** on this device")
+        line += " (goal: <= 2x)" + (" — **goal met**" if t[2] <= 2.0 else (" — **goal not met** on this device" if t[1] > 2.0 else " — **not settled**: the spread straddles 2x"))
     out.append(line + ".")
 for m in ["thesis", "rk_min", "rk_full"]:
     rows = [c for c in r["configs"] if c["material"] == m and not c["prepass"] and c["group"] in ("main", "rooms")]
     if len(rows) > 1:
         base = rows[0]["name"]
         rel = [(c["rooms_per_building"], paired(c["name"], base)) for c in rows[1:]]
-        worst = max(abs(v - 1.0) for _, v in rel)
-        out.append(f"- **{m}, {rows[0]['rooms_per_building']:,} to {rows[-1]['rooms_per_building']:,} rooms per building**: frame time relative to {rows[0]['rooms_per_building']:,} rooms (paired by frame): " + ", ".join(f"{n:,}: {v:.2f}" for n, v in rel) + (f" — within {100*worst:.0f} %, no dependence on the room count." if worst < 0.1 else f" — up to {100*worst:.0f} % apart."))
+        # Trend: slope of the frame-time ratio over log10(rooms), per sweep.
+        per_sweep = []
+        for s_i in range(S):
+            pts = [(math.log10(rows[0]["rooms_per_building"]), 1.0)]
+            for c in rows[1:]:
+                rat = [x / max(y, 1e-9) for x, y in zip(cfg[c["name"]][ka], cfg[base][ka])]
+                pts.append((math.log10(c["rooms_per_building"]), median(sweeps(rat)[s_i])))
+            per_sweep.append(100.0 * slope(pts))
+        allpts = [(math.log10(rows[0]["rooms_per_building"]), 1.0)] + [(math.log10(n), v) for n, v in rel]
+        sl = 100.0 * slope(allpts)
+        lo, hi = min(per_sweep), max(per_sweep)
+        if S > 1 and lo <= 0.0 <= hi:
+            verdict = f"no trend beyond the run-to-run spread ({sl:+.1f} % per decade of rooms; sweeps {lo:+.1f} to {hi:+.1f})"
+        else:
+            verdict = (f"frame time {'falls' if sl < 0 else 'rises'} by {abs(sl):.1f} % per decade of rooms"
+                       + (f" (every sweep: {lo:+.1f} to {hi:+.1f} %)" if S > 1 else " (one sweep: no spread to compare with)"))
+        out.append(f"- **{m}, {rows[0]['rooms_per_building']:,} to {rows[-1]['rooms_per_building']:,} rooms per building**: frame time relative to {rows[0]['rooms_per_building']:,} rooms (paired by frame): " + ", ".join(f"{n:,}: {v:.2f}" for n, v in rel) + f" — {verdict}.")
 if "plain +prepass" in cfg and "plain" in cfg:
-    out.append(f"- Pre-pass on the plain material: {100*(paired('plain', 'plain +prepass')-1):+.0f} % frame rate. Shaded fragments per frame (median): {cfg['plain']['fragments']:,.0f} without, {cfg['plain +prepass']['fragments']:,.0f} with the pre-pass (overdraw {cfg['plain']['fragments']/max(cfg['plain +prepass']['fragments'],1):.2f}).")
+    out.append(f"- Pre-pass on the plain material: {fmt3(paired3('plain', 'plain +prepass'), True)} frame rate. Shaded fragments per frame (median): {cfg['plain']['fragments']:,.0f} without, {cfg['plain +prepass']['fragments']:,.0f} with the pre-pass (overdraw {cfg['plain']['fragments']/max(cfg['plain +prepass']['fragments'],1):.2f}).")
 if "load" in r:
     out.append(f"- Machine load (1-minute load average from /proc/loadavg) at the start and end of the measured loop: {r['load'][0]} and {r['load'][1]}, on {r.get('cpus', '?')} CPUs; other jobs shared the CPU, which is why only paired per-frame ratios are quoted above.")
 mats = {m["name"]: m for m in r["materials"]}

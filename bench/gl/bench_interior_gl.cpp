@@ -25,9 +25,11 @@
 // clock starts). Configurations are interleaved frame by frame (round r renders camera pose r with
 // every configuration, in a rotated order), so a slow patch of a shared machine hits all of them
 // alike; ratios are taken per round against the plain material at the same pose and round, and
-// the median over rounds is reported with the quartiles.
+// the median over rounds is reported with the quartiles. With --poses P < N the camera path has P
+// poses and round r renders pose r mod P: the N / P sweeps over the same poses give the report
+// (scripts/bench_interior.sh) the run-to-run spread of every ratio (its range over the sweeps).
 //
-// Usage: bench_interior_gl [--width W] [--height H] [--rounds N] [--warmup N] [--only SUBSTR]
+// Usage: bench_interior_gl [--width W] [--height H] [--rounds N] [--poses P] [--warmup N] [--only SUBSTR]
 //                          [--json FILE] [--csv FILE] [--md FILE] [--png FILE] [--smoke]
 //                          [--require-raykit]
 //        bench_interior_gl --list-materials | --dump-frag NAME   (no GL context needed)
@@ -92,6 +94,7 @@ struct Options {
     int width = 512;
     int height = 384;
     int rounds = 15;
+    int poses = 0;  // camera poses on the path; 0: one per round
     int warmup = 2;
     bool smoke = false;
     bool require_raykit = false;
@@ -123,6 +126,7 @@ Options parse_options(int argc, char** argv)
         if (a == "--width") o.width = int_value();
         else if (a == "--height") o.height = int_value();
         else if (a == "--rounds") o.rounds = int_value();
+        else if (a == "--poses") o.poses = int_value();
         else if (a == "--warmup") o.warmup = int_value();
         else if (a == "--only") o.only = value();
         else if (a == "--json") o.json = value();
@@ -140,6 +144,7 @@ Options parse_options(int argc, char** argv)
         o.warmup = 0;
     }
     if (o.width < 8 || o.height < 8 || o.rounds < 1) usage_error("width, height >= 8 and rounds >= 1 required");
+    if (o.poses == 0 || o.poses > o.rounds) o.poses = o.rounds;
     return o;
 }
 
@@ -504,7 +509,7 @@ struct Material {
     std::string vert_path, frag_path;
     std::vector<raykit::ShaderDefine> defines;
     std::string features;          // human-readable description
-    int shading = 0;               // RK_IM_SHADING of a Kind::raykit material (texture unit 5)
+    int shading = 0;               // RK_IM_SHADING of a Kind::raykit material (texture unit 5); set from its defines
     GLuint color_prog = 0;
     GLuint depth_prog = 0;
 };
@@ -965,7 +970,7 @@ int run(const Options& opt)
     Target target(opt.width, opt.height);
     Renderer renderer_obj(mesh, tex);
     const float aspect = static_cast<float>(opt.width) / static_cast<float>(opt.height);
-    const int poses = opt.rounds;
+    const int poses = opt.poses;
 
     // Warm-up: every configuration renders a couple of frames (shader compilation, caches).
     for (int w = 0; w < std::max(opt.warmup, 1); ++w) {
@@ -978,7 +983,7 @@ int run(const Options& opt)
     const std::string load_start = load_average();
     const auto bench_start = std::chrono::steady_clock::now();
     for (int r = 0; r < opt.rounds; ++r) {
-        const Camera cam = camera_at(r, poses, aspect);
+        const Camera cam = camera_at(r % poses, poses, aspect);
         for (size_t k = 0; k < configs.size(); ++k) {
             const size_t ci = (k + static_cast<size_t>(r)) % configs.size();
             const Config& c = configs[ci];
@@ -1076,7 +1081,7 @@ int run(const Options& opt)
         std::ofstream f(opt.json);
         f << "{\n  \"renderer\": \"" << json_escape(renderer) << "\",\n";
         f << "  \"width\": " << opt.width << ", \"height\": " << opt.height << ", \"rounds\": " << opt.rounds
-          << ", \"warmup\": " << opt.warmup << ", \"buildings\": " << mesh.buildings
+          << ", \"poses\": " << opt.poses << ", \"warmup\": " << opt.warmup << ", \"buildings\": " << mesh.buildings
           << ", \"triangles\": " << mesh.index_count / 3 << ", \"loop_seconds\": " << fmt(bench_s, 2)
           << ", \"load\": [\"" << load_start << "\", \"" << load_end << "\"], \"cpus\": " << std::thread::hardware_concurrency() << ",\n";
         f << "  \"materials\": [\n";
@@ -1124,8 +1129,8 @@ int run(const Options& opt)
     if (!opt.md.empty()) {
         std::ofstream f(opt.md);
         f << "Renderer: `" << renderer << "`; " << opt.width << "x" << opt.height << ", " << mesh.buildings << " buildings ("
-          << mesh.index_count / 3 << " triangles, one draw call per pass), " << opt.rounds << " measured frames per configuration (camera poses "
-          << "along the path, configurations interleaved) after " << std::max(opt.warmup, 1) << " warm-up round(s); loop " << fmt(bench_s, 1)
+          << mesh.index_count / 3 << " triangles, one draw call per pass), " << opt.rounds << " measured frames per configuration (" << opt.poses << " camera poses "
+          << "along the path, swept " << opt.rounds / opt.poses << " time(s); configurations interleaved) after " << std::max(opt.warmup, 1) << " warm-up round(s); loop " << fmt(bench_s, 1)
           << " s.\n\n";
         auto table = [&](const std::string& group, const std::string& title) {
             bool any = false;
@@ -1269,7 +1274,9 @@ void add_raykit_materials(std::vector<Material>& out, const std::string& vert, c
     using D = std::vector<raykit::ShaderDefine>;
     // The bench's sprites are single images (no flipbook): RK_IM_FURNITURE_FLIPBOOK 0, as
     // raykit::interior_defines emits for InteriorSceneDesc::furniture_flipbook = false.
-    const D min = {{"RK_IM_BUILDING_FACADE", "1"}, {"RK_IM_FURNITURE_FLIPBOOK", "0"}};
+    // rk_min names RK_IM_SHADING 0 (four textures, as the thesis) explicitly: the library's default
+    // is the texture array.
+    const D min = {{"RK_IM_BUILDING_FACADE", "1"}, {"RK_IM_SHADING", "0"}, {"RK_IM_FURNITURE_FLIPBOOK", "0"}};
     const D full = {{"RK_IM_BUILDING_FACADE", "1"}, {"RK_IM_SHADING", "1"}, {"RK_IM_ROOM_LIGHTS", "1"},
                     {"RK_IM_FURNITURE_LAYERS", "2"}, {"RK_IM_FURNITURE_FLIPBOOK", "0"}, {"RK_IM_REFLECTION", "1"},
                     {"RK_IM_FADE", "1"}};
@@ -1281,6 +1288,7 @@ void add_raykit_materials(std::vector<Material>& out, const std::string& vert, c
         m.frag_path = frag;
         m.defines = defines;
         m.features = "samples/common/interior_building.frag: " + features;
+        m.shading = 1;  // interior_shading.glsl's default (the texture array) unless a define says otherwise
         for (const auto& d : defines) {
             if (d.name == "RK_IM_SHADING") m.shading = std::atoi(d.value.c_str());
         }
