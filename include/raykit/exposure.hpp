@@ -279,8 +279,8 @@ inline std::vector<ReductionPass> reduction_chain(int width, int height, int blo
         ReductionPass p;
         p.in_width = w;
         p.in_height = h;
-        p.out_width = (w + block - 1) / block;
-        p.out_height = (h + block - 1) / block;
+        p.out_width = (w - 1) / block + 1;  // ceil(w / block) without overflow for any block
+        p.out_height = (h - 1) / block + 1;
         p.block = block;
         span *= block;
         p.span = span;
@@ -312,7 +312,9 @@ inline double reduction_texel_weight(const ReductionPass& pass, int i, int j, in
 /// (rk_reduce_cover) and divides by the weights' sum: the exact mean up to float rounding.
 /// edge_weighted = false is the naive chain (CLAMP_TO_EDGE fetches, every block divided by
 /// block^2), which over-weights the last row/column whenever a level is not a multiple of block.
-/// Bad sizes (as reduction_chain) or values.size() != width * height: returns 0, described in *st.
+/// Values: finite with |v| <= FLT_MAX / (2 max(width * height, block^2)), so that no block's sum
+/// overflows, rounding included. Bad sizes (as reduction_chain) or values.size() != width * height:
+/// returns 0, described in *st.
 inline float reduce_chain_mean(const std::vector<float>& values, int width, int height, int block, bool edge_weighted,
                                Status* st = nullptr)
 {

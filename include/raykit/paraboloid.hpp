@@ -127,9 +127,11 @@ inline vec3 sample_image_bilinear(const EnvImage& img, vec2 uv)
     return glm::mix(a, b, ay);
 }
 
-/// The next mip level by a 2x2 box (GL's glGenerateMipmap for even sizes). Odd sizes (an odd level
-/// would mix the halves of an atlas), or an image whose texel count does not match its size: an
-/// empty image, described in *st (status.hpp).
+/// The next mip level by a 2x2 box (GL's glGenerateMipmap for even sizes): the sum of the four
+/// quarters, so that texels up to ±FLT_MAX average without overflow (a power-of-two scale is
+/// exact: the same bits as a quarter of the sum wherever that is finite and not denormal). Odd
+/// sizes (an odd level would mix the halves of an atlas), or an image whose texel count does not
+/// match its size: an empty image, described in *st (status.hpp).
 inline EnvImage downsample_box(const EnvImage& src, Status* st = nullptr)
 {
     detail::reset(st);
@@ -141,9 +143,8 @@ inline EnvImage downsample_box(const EnvImage& src, Status* st = nullptr)
     EnvImage dst(src.width / 2, src.height / 2);
     for (int y = 0; y < dst.height; ++y) {
         for (int x = 0; x < dst.width; ++x) {
-            const vec3 s = src.texel(2 * x, 2 * y) + src.texel(2 * x + 1, 2 * y) + src.texel(2 * x, 2 * y + 1) +
-                           src.texel(2 * x + 1, 2 * y + 1);
-            dst.set(x, y, 0.25f * s);
+            dst.set(x, y, 0.25f * src.texel(2 * x, 2 * y) + 0.25f * src.texel(2 * x + 1, 2 * y) +
+                              0.25f * src.texel(2 * x, 2 * y + 1) + 0.25f * src.texel(2 * x + 1, 2 * y + 1));
         }
     }
     return dst;
@@ -273,8 +274,8 @@ inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
 
 /// Bakes a cube map of `size` texels per face from a function of direction, each texel the mean
 /// of supersample x supersample evaluations spread evenly over its area (a box filter in texel
-/// space). `env(vec3 unit_dir) -> vec3`. size < 1 or supersample outside [1, 64]: an empty map
-/// (size 0), described in *st (status.hpp).
+/// space). `env(vec3 unit_dir) -> vec3`. size outside [1, 65536] or supersample outside [1, 64]:
+/// an empty map (size 0), described in *st (status.hpp).
 /// Max error, self-direction content (env(d) = d), against the float64 texel-centre direction of
 /// GL's table 8.19: 4.2e-8 rad with supersample 1 (the texel centre itself); 2.5e-5 rad = 0.0008
 /// texel with 4 (the box filter's mean, size 64; tests/test_paraboloid.cpp
@@ -444,7 +445,8 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// to [0, max_lod]: bilinear within a level, linear between levels (GL_LINEAR_MIPMAP_LINEAR with
 /// textureLod and GL_CLAMP_TO_EDGE), at rk_dual_paraboloid_uv. The CPU mirror of
 /// rk_dual_paraboloid_sample_lod.
-/// Domain: any finite dir (zero counts as +z), any lod (clamped to [0, min(max_lod, levels - 1)]).
+/// Domain: any finite dir (zero counts as +z), any lod (clamped to [0, min(max_lod, levels - 1)];
+/// NaN reads level 0).
 /// Edge cases: an empty map returns (0, 0, 0); on the seam (z = ±0) the +z half is read, and the
 /// guard keeps every tap inside the half (DualParaboloid.GuardKeepsEveryTapInItsHalf).
 /// Max error, as the angle between the lookup of a self-direction atlas (H = 64, LOD 0, one sample
@@ -467,7 +469,7 @@ inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float
 {
     if (map.levels.empty()) return vec3(0.0f);
     const float top = static_cast<float>(map.levels.size() - 1);
-    const float l = std::clamp(lod, 0.0f, std::min(map.max_lod, top));
+    const float l = lod > 0.0f ? std::min(lod, std::min(map.max_lod, top)) : 0.0f;  // NaN: 0
     const float l0 = std::floor(l);
     const std::size_t i0 = static_cast<std::size_t>(l0);
     auto at = [&](vec2 uv) {
@@ -567,8 +569,14 @@ inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, fl
 inline vec3 sample_paraboloid(const EnvImage& map, vec3 dir, float hemi, float guard_scale = 1.0f)
 {
     vec2 st = rk_paraboloid_encode(dir, hemi);
-    const float r2 = glm::dot(st, st);
-    if (r2 > 1.0f) st *= 1.0f / std::sqrt(r2);
+    // |st| reaches 1e30 near the antipode: normalised by its largest component first, so that the
+    // squared length cannot overflow (to inf, which would scale st to the centre).
+    const float m = std::max(std::abs(st.x), std::abs(st.y));
+    if (m > 0.0f) {
+        const vec2 q = st / m;
+        const float lq = std::sqrt(glm::dot(q, q));
+        if (m * lq > 1.0f) st = q / lq;
+    }
     return sample_image_bilinear(map, rk_paraboloid_uv(st, guard_scale));
 }
 

@@ -46,8 +46,9 @@ RK_INLINE vec3 rk_envmap_clamp_pos(vec3 v)
 }
 
 /// rk_envmap_normalize: v / |v| for any finite v without overflow or underflow (components are
-/// first scaled by the largest |component|, brought below 1e30 so that its reciprocal is a normal
-/// float); `fallback` when every |component| is below RK_FLT_MIN. Max error: 2.5 ulp per component.
+/// first scaled by the largest |component|, brought below 2.7e8 by the exact factor 2^-100 so that
+/// its reciprocal is a normal float); `fallback` when every |component| is below RK_FLT_MIN.
+/// Max error: 3.5 ulp per component against float64 (3.4 measured by test_adversarial).
 /// Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
 {
@@ -55,7 +56,7 @@ RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
     if (m < RK_FLT_MIN) {
         return fallback;
     }
-    float pre = m > 1.0e30f ? 1.0e-30f : 1.0f;
+    float pre = m > 1.0e30f ? 7.8886090522101181e-31f : 1.0f;
     vec3 q = (v * pre) / (m * pre);
     return q * inversesqrt(dot(q, q));
 }

@@ -182,7 +182,9 @@ RK_INLINE vec3 rk_fresnel_fast_params(float eta)
 /// ~ g0 + (eta - g0) cos^2, which is exact at 0° and 90° (so F0 and the grazing 1 are exact),
 /// then the textbook rs, rp fused over one division.
 /// Max abs error vs exact (measured over cos in [0,1]): 1.7e-3 for eta = 1.52 (Schlick: 3.45e-2),
-/// 3.7e-3 for 1.33 (Schlick: 6.0e-2), 3.5e-4 for 2.0, 1.3e-2 for 1.1 (Schlick: 0.21).
+/// 3.7e-3 for 1.33 (Schlick: 6.0e-2), 3.5e-4 for 2.0, 1.3e-2 for 1.1 (Schlick: 0.21); it grows
+/// without bound as eta -> 1: at eta = 1 the chord gives ((1 - cos) / (1 + cos))^2 (0.67 at cos
+/// 0.1) for cos > ~1e-10, where the exact reflectance is 0. Range [0, 1] for every input.
 /// Cost: 1 div + ~16 flops, no sqrt (params precomputed). Domain: cos_i clamped to [0, 1];
 /// params from rk_fresnel_fast_params. Never NaN: the denominator is floored.
 RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, vec3 params)

@@ -69,23 +69,30 @@ RK_INLINE float rk_paraboloid_hemi_sign(float hemi) { return hemi <= -RK_FLT_MIN
 /// rk_paraboloid_max_abs: the largest |component| of v. Exact. Cost: 3 abs, 2 max.
 RK_INLINE float rk_paraboloid_max_abs(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs(v.z)); }
 
-/// rk_paraboloid_prescale: a power-of-ten factor (1 or 1e-30) that brings a magnitude m <= FLT_MAX
-/// below 1e30 so that 1 / (m * factor) is a normal float: GPUs may evaluate a / m as a * (1 / m)
-/// and flush the denormal reciprocal of a huge m to zero. Exact. Cost: 1 compare, 1 select.
-RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 1.0e-30f : 1.0f; }
+/// rk_paraboloid_prescale: a power-of-two factor (1 or 2^-100 = 7.9e-31) that brings a magnitude
+/// m <= FLT_MAX below 2.7e8 so that 1 / (m * factor) is a normal float: GPUs may evaluate a / m as
+/// a * (1 / m) and flush the denormal reciprocal of a huge m to zero. A power of two scales
+/// without rounding (down to the denormal range). Exact. Cost: 1 compare, 1 select.
+RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 7.8886090522101181e-31f : 1.0f; }
 
 /// rk_paraboloid_normalize: v / |v| computed without overflow or underflow for every finite v
 /// (components first divided by the largest |component|); returns `fallback` unchanged when every
 /// component is below RK_FLT_MIN in magnitude (zero, or denormal, which GPUs flush to zero).
-/// Max error: 2.5 ulp per component against float64. Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
+/// Denormal components count as zero on every backend: beside a component near RK_FLT_MIN a
+/// denormal one would otherwise tilt the direction by up to 45 degrees, across the hemisphere
+/// that the raw sign test (rk_dual_paraboloid_hemi) chose. Max error: 3.5 ulp per component
+/// against float64 of that vector (3.4 measured by test_adversarial).
+/// Cost: 4 max/abs, 3 select, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
 {
-    float m = rk_paraboloid_max_abs(v);
+    vec3 w = vec3(abs(v.x) < RK_FLT_MIN ? 0.0f : v.x, abs(v.y) < RK_FLT_MIN ? 0.0f : v.y,
+                  abs(v.z) < RK_FLT_MIN ? 0.0f : v.z);
+    float m = rk_paraboloid_max_abs(w);
     if (m < RK_FLT_MIN) {
         return fallback;
     }
     float pre = rk_paraboloid_prescale(m);
-    vec3 q = (v * pre) / (m * pre);  // largest component +-1, dot(q, q) in [1, 3]
+    vec3 q = (w * pre) / (m * pre);  // largest component +-1, dot(q, q) in [1, 3]
     return q * inversesqrt(dot(q, q));
 }
 
@@ -128,21 +135,24 @@ RK_INLINE vec3 rk_paraboloid_decode(vec2 st, float hemi)
 /// projection, s = x / (|v| + hemi z), applied to dv. Used to give textureGrad derivatives that
 /// stay continuous across the atlas seam (paraboloid_sample.glsl): pass dFdx(dir) and dFdy(dir).
 /// Both v and dv are scaled by the largest |component| of v first (the result is invariant under
-/// that), so any finite input is safe; dv is then clamped to ±RK_PARABOLOID_POS_MAX. v = 0 returns
-/// (0, 0); within 1e-6 of the antipode the divisor is floored (|result| <= 4e30).
+/// that), so any finite input is safe; dv is then clamped to ±RK_PARABOLOID_POS_MAX. Denormal
+/// components of v count as zero (as in rk_paraboloid_normalize). v = 0 returns (0, 0); within
+/// 1e-6 of the antipode the divisor is floored (|result| <= 4e30).
 /// Accuracy: agrees with central differences of the float64 encode to 2e-5 relative (the
 /// differences' own truncation error) over random directions and scales 2^-20..2^20.
-/// Cost: 3 div, 1 sqrt, ~25 flops.
+/// Cost: 3 div, 1 sqrt, 3 select, ~25 flops.
 RK_INLINE vec2 rk_paraboloid_encode_differential(vec3 v, vec3 dv, float hemi)
 {
     float h = rk_paraboloid_hemi_sign(hemi);
-    float m = rk_paraboloid_max_abs(v);
+    vec3 w = vec3(abs(v.x) < RK_FLT_MIN ? 0.0f : v.x, abs(v.y) < RK_FLT_MIN ? 0.0f : v.y,
+                  abs(v.z) < RK_FLT_MIN ? 0.0f : v.z);
+    float m = rk_paraboloid_max_abs(w);
     if (m < RK_FLT_MIN) {
         return vec2(0.0f);
     }
     float pre = rk_paraboloid_prescale(m);
     float inv_m = 1.0f / (m * pre);
-    vec3 q = (v * pre) * inv_m;
+    vec3 q = (w * pre) * inv_m;
     vec3 dq = clamp((dv * pre) * inv_m, vec3(-RK_PARABOLOID_POS_MAX), vec3(RK_PARABOLOID_POS_MAX));
     float len = sqrt(dot(q, q));                // in [1, sqrt(3)]
     float dlen = dot(q, dq) / len;              // d|q|
@@ -228,8 +238,9 @@ RK_INLINE mat3 rk_paraboloid_frame_vertical(float theta)
 /// hemi = -1 this is exactly rk_paraboloid_frame_vertical(rk_paraboloid_frame_angle(n)) (Eq. 3.11).
 /// world = M * local, local = world * M. n and up are normalised internally; when up is (nearly)
 /// parallel to n (|cross| < 1e-4 after normalisation) the least aligned world axis replaces it, so
-/// horizontal windows (skylights) get a valid frame. n = 0 counts as -z. Orthonormal within 4 ulp.
-/// Cost: 3 normalisations, 2 cross, ~10 flops.
+/// horizontal windows (skylights) get a valid frame. n = 0 counts as -z. Orthonormal within 4 ulp
+/// (X is rebuilt as Y x Z: the first X, the normalised cross product of nearly parallel vectors,
+/// can be ~1e3 ulp off orthogonal to Z). Cost: 4 normalisations, 3 cross, ~10 flops.
 RK_INLINE mat3 rk_paraboloid_frame(vec3 n, vec3 up, float hemi)
 {
     float h = rk_paraboloid_hemi_sign(hemi);
@@ -245,8 +256,8 @@ RK_INLINE mat3 rk_paraboloid_frame(vec3 n, vec3 up, float hemi)
         x = cross(u, z);
     }
     x = rk_paraboloid_normalize(x, vec3(1.0f, 0.0f, 0.0f));
-    vec3 y = cross(z, x);
-    return mat3(x, y, z);
+    vec3 y = rk_paraboloid_normalize(cross(z, x), vec3(0.0f, 1.0f, 0.0f));
+    return mat3(cross(y, z), y, z);
 }
 
 // ---------------------------------------------------------------------------------------------

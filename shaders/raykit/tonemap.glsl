@@ -128,7 +128,8 @@ RK_INLINE vec3 rk_aces_narkowicz(vec3 rgb)
 /// rk_aces_hill_curve: the RRT+ODT rational fit of Stephen Hill's ACES approximation, in ACES AP1
 /// space: (v (v + 0.0245786) - 0.000090537) / (v (0.983729 v + 0.4329510) + 0.238081).
 /// Domain: v >= 0 (negative v clamped to 0, capped at 1e9). Range: -3.8e-4 at 0 (negative below
-/// v = 0.00325; rk_aces_hill clamps after its output matrix) rising to 1 / 0.983729 = 1.0165.
+/// v = 0.00325; rk_aces_hill clamps after its output matrix) rising to 1 / 0.983729 = 1.0165401,
+/// which float rounding overshoots by up to 2 ulp (largest output 1.0165403).
 /// Max error vs float64: 3.1e-7 (2.6 ulp of the asymptote) over {0} and [1e-5, 1e4] (test_tonemap
 /// CurvesAndHelpersMatchFloat64). Cost: 2 mad + 1 div per channel.
 RK_INLINE vec3 rk_aces_hill_curve(vec3 v)
@@ -344,10 +345,13 @@ RK_INLINE vec3 rk_lottes(vec3 rgb)
 
 /// rk_uchimura_curve: Uchimura 2017 (Gran Turismo) toe / linear / shoulder curve with max
 /// brightness P, contrast a, linear start m, linear length l, black tightness c, pedestal b.
-/// Domain: x >= 0 up to FLT_MAX (each segment is evaluated on its own range, min(x, m) for the toe
-/// and min(x, S0) for the line, so no infinity meets a zero weight). The parameters are not
-/// clamped: the formula needs m > 0 (x / m), a > 0, m < P and l < 1 (it divides by
-/// P - S1 = (P - m)(1 - l)). Max error vs float64: 5.7e-8 with the
+/// Domain: x >= 0 up to FLT_MAX (each segment is evaluated on its own range, min(x, m) for the toe,
+/// min(x, S0) for the line and the shoulder's exponent capped at 0, which it never exceeds where
+/// its weight is non-zero, so no infinity meets a zero weight). The parameters are not clamped:
+/// the formula needs m > 0 (x / m), a > 0, m < P and l < 1 (it divides by P - S1 = (P - m)(1 - l)),
+/// and the output is finite for P in [1e-3, 1e3], m in [1e-4 P, 0.999 P], l in [0, 0.999],
+/// a in [1e-3, 1e3], c in [0.01, 100], b in [-P, P] (test_adversarial; nearer those limits
+/// P - S1 rounds to 0 or an intermediate overflows). Max error vs float64: 5.7e-8 with the
 /// defaults, 9.7e-8 with P 1.5, a 1.2, m 0.3, l 0.3, c 1.5, b 0.01, over x in [1e-5, 1e4] on the CPU
 /// (test_tonemap CurvesAndHelpersMatchFloat64). Cost: 1 pow, 1 exp, 1 smoothstep, ~15 flops per channel.
 RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, float c, float b)
@@ -361,7 +365,7 @@ RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, flo
     vec3 w2 = step(vec3(m + l0), x);
     vec3 w1 = vec3(1.0f) - w0 - w2;
     vec3 T = m * pow(min(x, vec3(m)) / m, vec3(c)) + vec3(b);
-    vec3 S = vec3(P) - (P - S1) * exp(CP * (x - vec3(S0)));
+    vec3 S = vec3(P) - (P - S1) * exp(min(CP * (x - vec3(S0)), vec3(0.0f)));
     vec3 L = vec3(m) + a * (min(x, vec3(S0)) - vec3(m));
     return T * w0 + L * w1 + S * w2;
 }

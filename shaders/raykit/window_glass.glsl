@@ -101,8 +101,11 @@ RK_CONFIGURED_BEGIN(RK_NS_WINDOW_GLASS)
 /// fresnel.glsl's domain (eta < 1 gives total internal reflection, 1, past the critical angle); the
 /// fast mode models external reflection only and clamps eta to [1, RK_FRESNEL_ETA_MAX]
 /// (rk_fresnel_fast_params), so it never reports total internal reflection: eta < 1 there is
-/// treated as eta = 1 (reflectance 0 except at grazing incidence). Edge cases: grazing (cos_i = 0) gives
-/// 1; normal incidence 0.0816820 for one pane of n = 1.52.
+/// treated as eta = 1, where the chord is no model at all (((1 - cos) / (1 + cos))^2 for
+/// cos_i > ~1e-10 instead of 0; see rk_fresnel_dielectric_fast). Edge cases: grazing (cos_i = 0)
+/// gives 1 where the model has an interface (eta != 1 after its clamping) and, in the models that
+/// read panes, panes >= RK_FLT_MIN (0 panes give 0; denormal panes, 0 on a GPU that flushes
+/// them, give between 0 and 1 on the CPU); normal incidence 0.0816820 for one pane of n = 1.52.
 /// Max error, default build (exact mode 0 with RK_FRESNEL_WINDOW_MODE 2: one pane, the series
 /// summed per polarisation; equal bit for bit to rk_fresnel_window), vs the float64
 /// complex-amplitude Fresnel with the slab 2R / (1 + R) per polarisation: 3.2e-7 absolute for

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "adversarial.hpp"
 #include "rk_gl.hpp"
 #include "test_util.hpp"
 
@@ -131,17 +132,12 @@ struct Result {
 /// The folder holding raykit/*.glsl (compile definition of the test target).
 inline std::string shader_dir() { return RAYKIT_SHADER_DIR; }
 
-/// Runs one case on the current GL context and on the CPU; prints a one-line report.
-/// `exact_outputs` (optional) lists output indices compared bit-exactly instead of with the
-/// case's tolerance (integer results such as indices and hash halves).
-inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096,
-                  const std::vector<int>& exact_outputs = {})
+/// Runs the case's body on the current GL context over `in` (rows of c.inputs.size() floats) and
+/// returns the outputs (rows of c.n_out floats).
+inline std::vector<float> run_gpu(const Case& c, const std::string& shader_dir, const std::vector<float>& in)
 {
-    const size_t n_in = c.inputs.size();
+    const size_t rows = in.size() / c.inputs.size();
     const size_t n_out = static_cast<size_t>(c.n_out);
-    const std::vector<float> in = make_inputs(c, random_rows, 20261122u);
-    const size_t rows = in.size() / n_in;
-
     const std::string src = rkgl::resolved_shader(compute_source(c), c.name + ".comp", shader_dir, {shader_dir}, c.defines);
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
     GLuint bin = rkgl::make_buffer(in.size() * sizeof(float), in.data());
@@ -152,10 +148,24 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bout);
     glDispatchCompute(static_cast<GLuint>((rows + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    const std::vector<float> gpu = rkgl::read_floats(bout, rows * n_out);
+    std::vector<float> gpu = rkgl::read_floats(bout, rows * n_out);
     glDeleteBuffers(1, &bin);
     glDeleteBuffers(1, &bout);
     glDeleteProgram(prog);
+    return gpu;
+}
+
+/// Runs one case on the current GL context and on the CPU; prints a one-line report.
+/// `exact_outputs` (optional) lists output indices compared bit-exactly instead of with the
+/// case's tolerance (integer results such as indices and hash halves).
+inline Result run(const Case& c, const std::string& shader_dir, int random_rows = 4096,
+                  const std::vector<int>& exact_outputs = {})
+{
+    const size_t n_in = c.inputs.size();
+    const size_t n_out = static_cast<size_t>(c.n_out);
+    const std::vector<float> in = make_inputs(c, random_rows, 20261122u);
+    const size_t rows = in.size() / n_in;
+    const std::vector<float> gpu = run_gpu(c, shader_dir, in);
 
     Result r;
     r.rows = static_cast<long>(rows);
@@ -187,6 +197,37 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
                 c.name.c_str(), r.rows, r.max_abs, r.max_ulp, r.mismatches, r.non_finite,
                 r.worst.empty() ? "" : "\n         worst: ", r.worst.c_str());
     return r;
+}
+
+/// An adversarial sample on the driver: `rows` rows drawn by `draw` from tests/adversarial.hpp's
+/// stream (seeded by the case's name) through the case's body on the GPU; every output must be
+/// finite and pass `ok(output index, value)` (the documented range). The CPU sweeps with the same
+/// generator are tests/test_adversarial.cpp. Returns the failing outputs; prints a report.
+inline long run_adversarial(const Case& c, const std::string& shader_dir, long rows,
+                            const std::function<void(rktest::adv::Gen&, float*)>& draw,
+                            const std::function<bool(int, float)>& ok)
+{
+    const size_t n_in = c.inputs.size(), n_out = static_cast<size_t>(c.n_out);
+    rktest::adv::Gen g(rktest::adv::seed_for(c.name));
+    std::vector<float> in(static_cast<size_t>(rows) * n_in);
+    for (long r = 0; r < rows; ++r) draw(g, &in[static_cast<size_t>(r) * n_in]);
+    const std::vector<float> gpu = run_gpu(c, shader_dir, in);
+    long bad = 0;
+    std::string first;
+    for (size_t r = 0; r < static_cast<size_t>(rows); ++r) {
+        for (size_t k = 0; k < n_out; ++k) {
+            const float v = gpu[r * n_out + k];
+            if (std::isfinite(v) && ok(static_cast<int>(k), v)) continue;
+            if (bad++ == 0) {
+                first = "in (";
+                for (size_t j = 0; j < n_in; ++j) first += rktest::fmt(in[r * n_in + j]);
+                first += ") out[" + std::to_string(k) + "] " + rktest::fmt(v);
+            }
+        }
+    }
+    std::printf("[parity] %-44s adversarial rows %6ld  out of range %ld%s%s\n", c.name.c_str(), rows, bad,
+                first.empty() ? "" : "\n         first: ", first.c_str());
+    return bad;
 }
 
 }  // namespace parity

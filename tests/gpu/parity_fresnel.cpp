@@ -121,3 +121,84 @@ TEST(GpuParity, FresnelWindowModes)
     }
 }
 
+
+// An adversarial sample on the driver: 4096 rows per function from tests/adversarial.hpp's stream
+// (the CPU sweeps of tests/test_adversarial.cpp, >= 1e5 rows each, use the same generator); every
+// GPU output must be finite and inside the function's documented range. Finite inputs only (GLSL
+// does not require NaN or Inf); denormals are kept: a driver that flushes them reads ±0, inside
+// every domain here. Angles may exceed pi/2 by the driver's atan error (documented: 4e-6 rad on
+// llvmpipe). Inputs: a[0] cos_i, a[1] eta, a[2], a[3] reflectances / F0, F90 / k, a[4] panes.
+TEST(GpuParity, FresnelAdversarialRanges)
+{
+    using rktest::adv::Floats;
+    const Floats cosine = Floats::any().mark({0.0f, 1.0f, 0.7597469f});
+    const Floats eta = Floats::any().mark({1.0f, 1.52f, 1.0f / 1.52f, RK_FRESNEL_ETA_MIN, RK_FRESNEL_ETA_MAX});
+    const Floats panes = Floats::any().mark({0.0f, 1.0f, 2.0f, 1e6f});
+    auto draw = [&](rktest::adv::Gen& g, float* a) {
+        a[0] = g.f(cosine);
+        a[1] = g.f(eta);
+        a[2] = g.f(Floats::any());
+        a[3] = g.f(Floats::any());
+        a[4] = g.f(panes);
+    };
+    auto in = [](float lo, float hi) { return [lo, hi](int, float v) { return v >= lo && v <= hi; }; };
+    const auto unit = in(0.0f, 1.0f);
+    const auto angle = in(0.0f, RK_HALF_PI + 4e-6f);
+    const char* F = "raykit/fresnel.glsl";
+    const Domain d = dom::unit();
+#define RK_ADV_FRESNEL(NAME, NOUT, ...) RK_PARITY(NAME, F, (d, d, d, d, d), NOUT, __VA_ARGS__)
+    const std::vector<std::pair<parity::Case, std::function<bool(int, float)>>> cases = {
+        {RK_ADV_FRESNEL("rk_fresnel_clamp_eta", 1, o[0] = rk_fresnel_clamp_eta(a[1]);), in(RK_FRESNEL_ETA_MIN, RK_FRESNEL_ETA_MAX)},
+        {RK_ADV_FRESNEL("rk_f0_from_ior", 1, o[0] = rk_f0_from_ior(a[1], a[2]);), unit},
+        {RK_ADV_FRESNEL("rk_f0_from_eta", 1, o[0] = rk_f0_from_eta(a[1]);), unit},
+        {RK_ADV_FRESNEL("rk_eta_from_f0", 1, o[0] = rk_eta_from_f0(a[2]);), in(1.0f, 4.1e6f)},
+        {RK_ADV_FRESNEL("rk_fresnel_schlick(float,float)", 1, o[0] = rk_fresnel_schlick(a[0], a[2]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_schlick(float,vec3)", 3,
+                        vec3 r = rk_fresnel_schlick(a[0], vec3(a[2], a[3], a[1])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         unit},
+        {RK_ADV_FRESNEL("rk_fresnel_schlick(float,float,float)", 1, o[0] = rk_fresnel_schlick(a[0], a[2], a[3]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_schlick(float,vec3,vec3)", 3,
+                        vec3 r = rk_fresnel_schlick(a[0], vec3(a[2], a[3], a[1]), vec3(a[3], a[1], a[2])); o[0] = r.x; o[1] = r.y;
+                        o[2] = r.z;),
+         unit},
+        {RK_ADV_FRESNEL("rk_fresnel_dielectric_sp", 2, vec2 r = rk_fresnel_dielectric_sp(a[0], a[1]); o[0] = r.x; o[1] = r.y;), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_dielectric", 1, o[0] = rk_fresnel_dielectric(a[0], a[1]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_dielectric_fast(float,vec3)", 1,
+                        o[0] = rk_fresnel_dielectric_fast(a[0], rk_fresnel_fast_params(a[1]));),
+         unit},
+        {RK_ADV_FRESNEL("rk_fresnel_dielectric_fast(float,float)", 1, o[0] = rk_fresnel_dielectric_fast(a[0], a[1]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_dielectric_poly", 1,
+                        o[0] = rk_fresnel_dielectric_poly(a[0], vec4(a[1], a[2], a[3], a[4]), vec2(a[4], a[2]));),
+         unit},
+        {RK_ADV_FRESNEL("rk_fresnel_conductor(float,vec3,vec3)", 3,
+                        vec3 r = rk_fresnel_conductor(a[0], vec3(a[1], a[2], a[3]), vec3(a[3], a[1], a[2])); o[0] = r.x; o[1] = r.y;
+                        o[2] = r.z;),
+         unit},
+        {RK_ADV_FRESNEL("rk_fresnel_conductor(float,float,float)", 1, o[0] = rk_fresnel_conductor(a[0], a[1], a[2]);), unit},
+        {RK_ADV_FRESNEL("rk_critical_cos", 1, o[0] = rk_critical_cos(a[1]);), unit},
+        {RK_ADV_FRESNEL("rk_critical_angle", 1, o[0] = rk_critical_angle(a[1]);), angle},
+        {RK_ADV_FRESNEL("rk_brewster_angle", 1, o[0] = rk_brewster_angle(a[1]);), angle},
+        {RK_ADV_FRESNEL("rk_fresnel_slab", 1, o[0] = rk_fresnel_slab(a[2]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_slab_sp", 1, o[0] = rk_fresnel_slab_sp(vec2(a[2], a[3]));), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_glazing", 1, o[0] = rk_fresnel_glazing(a[2], a[4]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_glazing_sp", 1, o[0] = rk_fresnel_glazing_sp(vec2(a[2], a[3]), a[4]);), unit},
+        {RK_ADV_FRESNEL("rk_fresnel_window", 1, o[0] = rk_fresnel_window(a[0], a[1], a[4]);), unit},
+    };
+#undef RK_ADV_FRESNEL
+    long bad = 0;
+    for (const auto& [c, ok] : cases) bad += parity::run_adversarial(c, parity::shader_dir(), 4096, draw, ok);
+    // rk_refract: vectors with components up to 1e15 in magnitude (its domain) give finite outputs.
+    parity::Case refract = RK_PARITY("rk_refract", F, (d, d, d, d, d, d, d), 4,
+                                     vec3 t = vec3(0.0f); bool refracted = rk_refract(vec3(a[0], a[1], a[2]), vec3(a[3], a[4], a[5]), a[6], t);
+                                     o[0] = refracted ? 1.0f : 0.0f; o[1] = t.x; o[2] = t.y; o[3] = t.z;);
+    const rktest::adv::Vecs lim = rktest::adv::Vecs::of(Floats::range(-1e15f, 1e15f));
+    bad += parity::run_adversarial(
+        refract, parity::shader_dir(), 4096,
+        [&](rktest::adv::Gen& g, float* a) {
+            const vec3 i = g.v3(lim), n = g.v3(lim);
+            a[0] = i.x, a[1] = i.y, a[2] = i.z, a[3] = n.x, a[4] = n.y, a[5] = n.z;
+            a[6] = g.f(eta);
+        },
+        [](int, float) { return true; });
+    EXPECT_EQ(bad, 0);
+}

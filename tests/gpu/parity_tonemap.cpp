@@ -112,3 +112,79 @@ TEST(GpuParity, TonemapOperatorMacro)
         }
     }
 }
+
+// An adversarial sample on the driver: 4096 rows per function from tests/adversarial.hpp's stream
+// (the CPU sweeps of tests/test_adversarial.cpp, >= 1e5 rows each, use the same generator); every
+// GPU output must be finite and inside the function's documented range. Finite inputs only: GLSL
+// does not require NaN or Inf to be supported, so the promises about them are CPU-only. Denormals
+// are kept: a driver that flushes them reads ±0, which lies inside every domain here, so the
+// range must hold either way. Inputs: a[0..2] a colour of any finite channels, a[3] a white point.
+TEST(GpuParity, TonemapAdversarialRanges)
+{
+    using rktest::adv::Floats;
+    using rktest::adv::Vecs;
+    const Vecs rgb = Vecs::any();
+    const Floats white = Floats::any().mark({1e-9f, 1e9f, RK_HDR_MAX});
+    auto draw = [&](rktest::adv::Gen& g, float* a) {
+        const vec3 c = g.v3(rgb);
+        a[0] = c.x;
+        a[1] = c.y;
+        a[2] = c.z;
+        a[3] = g.f(white);
+    };
+    auto in = [](float lo, float hi) { return [lo, hi](int, float v) { return v >= lo && v <= hi; }; };
+    const char* C = "raykit/color.glsl";
+    const char* T = "raykit/tonemap.glsl";
+#define RK_ADV_TONEMAP(NAME, INCLUDE, ...) RK_PARITY(NAME, INCLUDE, (hdr(), hdr(), hdr(), hdr()), 3, __VA_ARGS__)
+    const std::vector<std::pair<parity::Case, std::function<bool(int, float)>>> cases = {
+        {RK_ADV_TONEMAP("rk_hdr_sanitize", C, vec3 r = rk_hdr_sanitize(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, RK_HDR_MAX)},
+        {RK_ADV_TONEMAP("rk_srgb_encode", C, vec3 r = rk_srgb_encode(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_srgb_decode", C, vec3 r = rk_srgb_decode(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_reinhard_scale", T, o[0] = rk_reinhard_scale(a[0], a[1], a[2]);), in(0.0f, RK_HDR_MAX)},
+        {RK_ADV_TONEMAP("rk_reinhard", T, o[0] = rk_reinhard(a[0]);), in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_reinhard_extended", T, o[0] = rk_reinhard_extended(a[0], a[3]);), in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_tonemap_reinhard", T,
+                        vec3 r = rk_tonemap_reinhard(vec3(a[0], a[1], a[2]), a[3]); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_aces_narkowicz", T, vec3 r = rk_aces_narkowicz(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_aces_hill_curve", T,
+                        vec3 r = rk_aces_hill_curve(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(-3.81e-4f, 1.0165403f)},
+        {RK_ADV_TONEMAP("rk_aces_hill", T, vec3 r = rk_aces_hill(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_agx default", T, vec3 r = rk_agx(vec3(a[0], a[1], a[2]), 0); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_agx golden", T, vec3 r = rk_agx(vec3(a[0], a[1], a[2]), 1); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_agx punchy", T, vec3 r = rk_agx(vec3(a[0], a[1], a[2]), 2); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_pbr_neutral", T, vec3 r = rk_pbr_neutral(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_pbr_neutral_inverse", T,
+                        vec3 r = rk_pbr_neutral_inverse(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, RK_FLT_MAX)},
+        {RK_ADV_TONEMAP("rk_hable_curve", T, vec3 r = rk_hable_curve(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f - 0.02f / 0.30f)},
+        {RK_ADV_TONEMAP("rk_hable", T, vec3 r = rk_hable(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;), in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_lottes", T, vec3 r = rk_lottes(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;), in(0.0f, 1.0f)},
+        {RK_ADV_TONEMAP("rk_uchimura", T, vec3 r = rk_uchimura(vec3(a[0], a[1], a[2])); o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+         in(0.0f, 1.0f)},
+    };
+#undef RK_ADV_TONEMAP
+    long bad = 0;
+    for (const auto& [c, ok] : cases) bad += parity::run_adversarial(c, parity::shader_dir(), 4096, draw, ok);
+    // rk_tonemap under every RK_TONEMAP_OPERATOR (and AgX look).
+    for (int op = 0; op <= 8; ++op) {
+        for (int look = 0; look <= (op == 4 ? 2 : 0); ++look) {
+            parity::Case c{"rk_tonemap op " + std::to_string(op) + " look " + std::to_string(look), T, {hdr(), hdr(), hdr(), hdr()}, 3,
+                           "vec3 r = rk_tonemap(vec3(a[0], a[1], a[2]), a[3]); o[0] = r.x; o[1] = r.y; o[2] = r.z;",
+                           [](const float*, float*) {}, 0.0, 0.0, tonemap_defines(static_cast<ToneOperator>(op), look)};
+            bad += parity::run_adversarial(c, parity::shader_dir(), 4096, draw, in(0.0f, 1.0f));
+        }
+    }
+    EXPECT_EQ(bad, 0);
+}
