@@ -97,8 +97,8 @@ TEST(Exposure, Ev100AndExposureDefinitions)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Scalar functions vs float64 over their domains; the measured maxima are the numbers quoted in
-// exposure.glsl.
+// Scalar functions vs float64 over their domains, on these samples (exposure.glsl quotes the
+// maxima of denser sampling, docs/dialect.md).
 
 TEST(Exposure, ScalarFunctionsMatchFloat64)
 {

@@ -205,7 +205,9 @@ TEST(Fresnel, ConductorMatchesFloat64)
     // With n, k << 1, Re z = eta^2 - k^2 - sin^2 ~ -sin^2 < 0: the naive a^2 = (|z| + Re z) / 2
     // cancels (3.3e-6 at n = k = 0.1, cos 0.531); the library's cancellation-free form stays at
     // float rounding.
-    EXPECT_LT(grid.max_abs, 4e-7) << grid.str();  // measured 2.7e-7 (3.3e-6 before a^2 avoided (|z| + Re z) / 2)
+    // Measured 2.7e-7 on this grid (3.3e-6 before a^2 avoided (|z| + Re z) / 2); the documented
+    // 4.4e-6 lies off it (small k > 0 with n < 1, near the critical angle).
+    EXPECT_LT(grid.max_abs, 4e-7) << grid.str();
     EXPECT_LT(grid.mean_abs(), 5e-8) << grid.str();
 }
 
@@ -232,8 +234,9 @@ TEST(Fresnel, SchlickFormsMatchTextbook)
     }
     std::printf("Schlick scalar %s\nSchlick f90    %s\nSchlick RGB    %s\nSchlick RGB f90 %s\n", scalar.str().c_str(),
                 f90s.str().c_str(), rgb.str().c_str(), rgb90.str().c_str());
-    // Measured 2.3e-7 (scalar and f90 forms, near cos 0.04: the rounding of 1 - cos, x5 through the
-    // fifth power); the RGB forms are the same arithmetic per channel (1.3e-7, 7e-8 on their inputs).
+    // Measured 2.3e-7 here (scalar and f90 forms, near cos 0.04: the rounding of 1 - cos, x5
+    // through the fifth power); the RGB forms are the same arithmetic per channel (1.3e-7, 7e-8 on
+    // their inputs). The documented 3.4e-7 and 3.1e-7 lie off these samples (cos ~0.016, other f0).
     EXPECT_LT(scalar.max_abs, 2.5e-7) << scalar.str();
     EXPECT_LT(f90s.max_abs, 2.5e-7) << f90s.str();
     EXPECT_LT(rgb.max_abs, 2.5e-7) << rgb.str();
@@ -333,10 +336,10 @@ TEST(Fresnel, PolyErrorAgainstExact)
     // cosines (a denser grid than the helper's 4097).
     struct Case {
         float eta;
-        double bound;  // documented max abs error (fresnel.glsl), with the last digit rounded up
+        double bound;  // documented max abs error (fresnel.glsl; 5.0e-3 on [1.25, 2.05])
     };
-    const Case cases[] = {{1.2f, 5.4e-3},  {1.25f, 4.9e-3}, {1.33f, 3.7e-3}, {1.52f, 3.4e-3},
-                          {1.8f, 4.9e-3},  {2.0f, 4.8e-3},  {2.05f, 4.95e-3}, {2.5f, 7.3e-3}};
+    const Case cases[] = {{1.2f, 5.4e-3},  {1.25f, 5.0e-3}, {1.33f, 3.6e-3}, {1.52f, 3.4e-3},
+                          {1.8f, 5.0e-3},  {2.0f, 4.7e-3},  {2.05f, 5.0e-3}, {2.5f, 7.2e-3}};
     for (const Case& cs : cases) {
         const FresnelPolyParams p = rk_fresnel_poly_params(cs.eta);
         ErrorStats poly, schlick;

@@ -1143,6 +1143,8 @@ TEST(DualParaboloid, UvDifferentialAgainstComplexStep)
         "                                               |err| / |d uv| %s\n",
         norm.str().c_str(), rel.str().c_str());
     EXPECT_LT(norm.max_abs, 1e-6) << norm.worst;
+    // Relative to |d uv| the error has no bound (d_dir parallel to dir): a regression check on
+    // these samples only.
     EXPECT_LT(rel.max_abs, 1e-4) << rel.worst;
 }
 

@@ -39,9 +39,10 @@ inline float fresnel_lut_value(float cos_i, float eta, FresnelLutMode mode, floa
 /// (environment) or N·L (highlight). Texel i holds the value at its centre, cos = (i + 0.5) / size,
 /// so a GL_LINEAR, CLAMP_TO_EDGE texture sampled at u = cos_i reproduces the analytic value
 /// exactly at texel centres and interpolates linearly between them. Upload as R32F (or R16F:
-/// adds 4.9e-4 relative rounding). Linear-interpolation error for n = 1.52, slab_polarised:
-/// 2.3e-2 at 64 texels, 1.1e-2 at 128, 5.7e-3 at 256, all from the steep grazing end (cos < 0.1;
-/// see test_fresnel). Use the analytic rk_fresnel_window where grazing views matter.
+/// adds 4.9e-4 relative rounding). Linear-interpolation error for n = 1.52, slab_polarised: 2.3e-2
+/// at 64 texels, 1.2e-2 at 128, 5.7e-3 at 256 (every 4th cos float + refinement), all from the
+/// steep grazing end (cos < 0.1; see test_fresnel). Use the analytic rk_fresnel_window where
+/// grazing views matter.
 /// Returns an empty vector for size < 2 or size > 65536 (no exception: engines build with
 /// -fno-exceptions). Cost: one exact evaluation per texel.
 inline std::vector<float> bake_fresnel_lut_1d(int size, float eta, FresnelLutMode mode, float panes = 1.0f)
@@ -82,7 +83,7 @@ struct FresnelPolyParams {
 /// squares, 120 rounds over 401 Chebyshev points of [0, 1]) of (F(cos) - f0) / (1 - cos) weighted
 /// by (1 - cos), so f0 stays exact. Deterministic; cost about 1 ms per material. Near eta = 1 the
 /// reflectance jumps from ~0 to 1 at grazing and no quartic follows it: check max_abs_error
-/// (2.6e-2 at eta 1.05, 1.2e-2 at 1.1; above 2.05 the error grows too: 1.0e-2 at 3).
+/// (2.7e-2 at eta 1.05, 1.2e-2 at 1.1; above 2.05 the error grows too: 1.1e-2 at 3).
 inline FresnelPolyParams rk_fresnel_poly_params(float eta)
 {
     const double lo = 1.0 + 1.0 / 1024.0, in = static_cast<double>(eta);

@@ -107,10 +107,10 @@ struct OctahedralMap {
 /// CPU mirror of texture(sampler, uv) on one level.
 /// Domain: finite uv with |uv * size| < 2^31 (the texel index is an int); uv outside [0, 1] reads
 /// the edge texels. Edge cases: a texel centre returns that texel exactly.
-/// Max error vs float64 bilinear interpolation at the same uv: 1.2e-7 for values in [0, 1]
-/// (128 x 64 image, uv in [-0.1, 1.1]^2; tests/test_paraboloid.cpp Bake.BilinearAgainstFloat64
-/// asserts 1e-5). uv * size is exact for power-of-two sizes; otherwise its rounding (an ulp of
-/// uv * size) moves the weights by as much.
+/// Max error vs float64 bilinear interpolation at the same uv: 1.4e-7 for values in [0, 1]
+/// (128 x 64 image, uv in [-0.1, 1.1]^2; 2e7 random uv + refinement; tests/test_paraboloid.cpp
+/// Bake.BilinearAgainstFloat64 asserts 1e-5). uv * size is exact for power-of-two sizes; otherwise
+/// its rounding (an ulp of uv * size) moves the weights by as much.
 /// Cost: 4 texel reads, 2 floor, 3 vec3 mix (9 lerps), ~6 flops.
 inline vec3 sample_image_bilinear(const EnvImage& img, vec2 uv)
 {
@@ -251,9 +251,10 @@ inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
 /// edge come from the adjacent face, at the texel nearest to the continued direction).
 /// Domain: finite dir; the zero vector reads +Z's centre. cube.size >= 1 (an empty cube is not
 /// checked). Max error, as the angle between the lookup of a self-direction cube (64 texels, one
-/// sample per texel) and the direction: 3.6e-3 rad = 0.115 texel (2 / size), at the cube's corners
-/// where the off-face taps are nearest-texel; second order inside a face (tests/test_paraboloid.cpp
-/// Bake.SelfDirectionMapsTexelsAndLookups asserts 0.15 texel).
+/// sample per texel) and the direction: 3.7e-3 rad = 0.12 texel (2 / size), at the cube's corners
+/// where the off-face taps are nearest-texel (5e6 random directions + refinement); second order
+/// inside a face (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups asserts 0.15
+/// texel).
 /// Cost: face selection (3 abs, 2 div), 4 texel reads (an off-face one adds a face direction, a
 /// face selection and 2 floor), 2 floor, 3 vec3 mix.
 inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
@@ -450,19 +451,19 @@ inline DualParaboloidMap bake_dual_paraboloid(const EnvCubeMap& cube, DualParabo
 /// Edge cases: an empty map returns (0, 0, 0); on the seam (z = ±0) the +z half is read, and the
 /// guard keeps every tap inside the half (DualParaboloid.GuardKeepsEveryTapInItsHalf).
 /// Max error, as the angle between the lookup of a self-direction atlas (H = 64, LOD 0, one sample
-/// per texel) and the direction: 1.6e-4 rad = 0.0026 texel (4 / (g H)), second order everywhere
-/// (Bake.SelfDirectionMapsTexelsAndLookups); baked from a 96-texel cube (max_lod 2), within a
-/// texel of the seam (|st| > 1 - h, h = 2^lod 2 / (g H) the LOD's texel in st) 1.6e-4, 6.0e-4 and
-/// 2.4e-3 rad at LOD 0, 1, 2, below the band one texel further in (1.7e-4, 6.4e-4, 2.8e-3; the
-/// guard band's content is right). Not continuous across the seam: the halves are mirror images,
-/// so their bilinear errors across z = 0 have opposite signs and the lookup jumps by up to
-/// h^2 / 4 rad (2.7e-4, 1.1e-3, 4.4e-3: twice either side's error, 1.6 times the band's)
-/// (Bake.SeamIsContinuous). A map baked with DualParaboloidBakeOptions::seam_fade cross-fades the
-/// halves over |z| < map.seam_band (as rk_dual_paraboloid_sample_lod_seamless): with 2 texels
-/// (g 0.875 instead of 0.9375 for H = 64, max_lod 2: 7 % fewer texels across the disk) the jump
-/// falls to the probes' own spacing (2.3e-6 rad at every LOD), and the error inside the band
-/// (1.9e-4, 6.8e-4, 2.6e-3 rad at LOD 0, 1, 2) stays below the error beside it (2.0e-4, 7.1e-4,
-/// 2.7e-3) (Bake.SeamFadeRemovesTheJump).
+/// per texel) and the direction: 1.7e-4 rad = 0.0026 texel (4 / (g H)), second order everywhere
+/// (5e6 random directions + refinement; Bake.SelfDirectionMapsTexelsAndLookups); baked from a
+/// 96-texel cube (max_lod 2), within a texel of the seam (|st| > 1 - h, h = 2^lod 2 / (g H) the
+/// LOD's texel in st) 1.6e-4, 6.0e-4 and 2.4e-3 rad at LOD 0, 1, 2, below the band one texel
+/// further in (1.7e-4, 6.4e-4, 2.8e-3; the guard band's content is right). Not continuous across
+/// the seam: the halves are mirror images, so their bilinear errors across z = 0 have opposite
+/// signs and the lookup jumps by up to h^2 / 4 rad (2.7e-4, 1.1e-3, 4.4e-3: twice either side's
+/// error, 1.6 times the band's) (Bake.SeamIsContinuous). A map baked with
+/// DualParaboloidBakeOptions::seam_fade cross-fades the halves over |z| < map.seam_band (as
+/// rk_dual_paraboloid_sample_lod_seamless): with 2 texels (g 0.875 instead of 0.9375 for H = 64,
+/// max_lod 2: 7 % fewer texels across the disk) the jump falls to the probes' own spacing (2.3e-6
+/// rad at every LOD), and the error inside the band (1.9e-4, 6.8e-4, 2.6e-3 rad at LOD 0, 1, 2)
+/// stays below the error beside it (2.0e-4, 7.1e-4, 2.7e-3) (Bake.SeamFadeRemovesTheJump).
 /// Cost: rk_dual_paraboloid_uv + 1 bilinear lookup (2 and a vec3 mix at a fractional LOD); twice
 /// that inside a fade band.
 inline vec3 sample_dual_paraboloid(const DualParaboloidMap& map, vec3 dir, float lod = 0.0f)
@@ -533,8 +534,9 @@ EnvImage bake_paraboloid_fn(F&& env, int size, mat3 frame, float hemi, float gua
 /// samples per cube texel where the map's texels are largest, as for the atlas). Fails as
 /// bake_paraboloid_fn, and for an empty cube (an empty image, described in *st).
 /// Max error: a window-frame map (64 texels) from a self-direction cube of 48 texels looks up
-/// within 1.3e-3 rad of the direction over the half-space the window reflects
-/// (tests/test_paraboloid.cpp Bake.WindowFrameMapsAndSingleParaboloid asserts 0.01 rad).
+/// within 1.5e-3 rad of the direction over the half-space the window reflects (5e6 random
+/// directions + refinement; tests/test_paraboloid.cpp Bake.WindowFrameMapsAndSingleParaboloid
+/// asserts 0.01 rad).
 /// Cost: size^2 supersample^2 sample_cube_map.
 inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, float hemi, float guard_scale = 1.0f,
                                 int supersample = 0, Status* st = nullptr)
@@ -560,10 +562,11 @@ inline EnvImage bake_paraboloid(const EnvCubeMap& cube, int size, mat3 frame, fl
 /// read the rim point with the same st direction; the exact antipode of d0 has st = (0, 0) and
 /// reads the centre.
 /// Max error, as the angle between the lookup of a self-direction map (g = 1, 64 texels, one
-/// sample per texel) and the direction, over the hemisphere: 1.5e-2 rad = 0.24 of the centre
-/// texel (4 / size), on the rim, where g = 1 puts the rim on the image edge and clamp-to-edge
-/// returns the last texel centre (half a rim texel, 1 / size rad): bake with g < 1 for a guard
-/// ring. Elsewhere second order (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups).
+/// sample per texel) and the direction, over the hemisphere: 1.6e-2 rad = 0.25 of the centre
+/// texel (4 / size; 5e6 random directions + refinement), on the rim, where g = 1 puts the rim on
+/// the image edge and clamp-to-edge returns the last texel centre (half a rim texel, 1 / size rad):
+/// bake with g < 1 for a guard ring. Elsewhere second order (tests/test_paraboloid.cpp
+/// Bake.SelfDirectionMapsTexelsAndLookups).
 /// Cost: rk_paraboloid_encode, 1 dot (+ 1 sqrt, 1 div behind the map), rk_paraboloid_uv, 1
 /// bilinear lookup.
 inline vec3 sample_paraboloid(const EnvImage& map, vec3 dir, float hemi, float guard_scale = 1.0f)
@@ -603,9 +606,10 @@ inline EnvCubeMap cube_from_dual_paraboloid(const DualParaboloidMap& map, int si
 /// Domain: any finite dir (normalised first, robustly; all-denormal counts as zero). Edge cases:
 /// z = -0 is not folded; x = 0 or y = 0 below the equator folds to the + side (Cigolle's
 /// signNotZero); -z maps to the corner (1, 1), the same direction as the other three corners.
-/// Max error vs float64 (Cigolle et al. 2014's listing): 1.3e-7 in p; dir -> p -> dir through
-/// octahedral_decode within 3.1e-7 rad (tests/test_paraboloid.cpp Octahedral.EncodeDecodeAgainstFloat64
-/// asserts 3e-7 and 5e-7). Cost: rk_paraboloid_normalize (1 div, 1 rsqrt) + 2 div + ~8 flops.
+/// Max error vs float64 (Cigolle et al. 2014's listing): 1.5e-7 in p; dir -> p -> dir through
+/// octahedral_decode within 3.3e-7 rad (2e7 random directions + refinement;
+/// tests/test_paraboloid.cpp Octahedral.EncodeDecodeAgainstFloat64 asserts 3e-7 and 5e-7).
+/// Cost: rk_paraboloid_normalize (1 div, 1 rsqrt) + 2 div + ~8 flops.
 inline vec2 octahedral_encode(vec3 dir)
 {
     const vec3 d = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, 1.0f));
@@ -620,7 +624,7 @@ inline vec2 octahedral_encode(vec3 dir)
 
 /// The unit direction of octahedral coordinates p in [-1, 1]^2 (clamped).
 /// Domain: finite p; outside [-1, 1]^2 clamped. Edge cases: the four corners all give -z, (0, 0)
-/// gives +z. Max error vs float64: 4.2e-8 rad (random p; tests/test_paraboloid.cpp
+/// gives +z. Max error vs float64: 1.1e-7 rad (2e7 random p + refinement; tests/test_paraboloid.cpp
 /// Octahedral.EncodeDecodeAgainstFloat64 asserts 3e-7). Cost: ~8 flops + 1 normalisation
 /// (1 sqrt, 1 div).
 inline vec3 octahedral_decode(vec2 p_in)
@@ -696,11 +700,11 @@ inline OctahedralMap bake_octahedral(const EnvCubeMap& cube, int size, int super
 /// edge reads the texel mirrored across the edge's midpoint, as a one-texel gutter would provide).
 /// Domain: any finite dir (zero counts as +z); map.size >= 2.
 /// Max error, as the angle between the lookup of a self-direction map (64 texels, one sample per
-/// texel) and the direction: 1.9e-2 rad = 0.25 of the largest texel angle (0.0765 rad), next to
-/// the folds (p.x = 0, p.y = 0 and the inner diamond's edges), where bilinear interpolation across
-/// the mapping's kink errs to first order (tests/test_paraboloid.cpp
-/// Bake.SelfDirectionMapsTexelsAndLookups asserts 0.3). Cost: octahedral_encode, 4 texel reads
-/// (with the edge mirroring), 2 floor, 3 vec3 mix.
+/// texel) and the direction: 2.0e-2 rad = 0.25 of the largest texel angle (0.0765 rad; 5e6 random
+/// directions + refinement), next to the folds (p.x = 0, p.y = 0 and the inner diamond's edges),
+/// where bilinear interpolation across the mapping's kink errs to first order
+/// (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups asserts 0.3).
+/// Cost: octahedral_encode, 4 texel reads (with the edge mirroring), 2 floor, 3 vec3 mix.
 inline vec3 sample_octahedral(const OctahedralMap& map, vec3 dir)
 {
     const int n = map.size;

@@ -16,11 +16,12 @@
 //     become RK_HDR_MAX (1e18), and denormals become 0 (so a CPU, which keeps denormals, takes the
 //     same threshold decisions as a GPU that flushes them). Thresholds and knees are sanitised alike.
 //   - Luminance is rk_luminance (BT.709 weights; the thesis's 0.2125/0.7154/0.0721 differ by
-//     < 2e-4 relative) of the sanitised colour.
+//     < 2e-4 per weight, < 1.4e-3 relative in Y) of the sanitised colour.
 //   - The knee is clamped to [0, threshold], so the bright pass is exactly 0 at luminance 0 and
 //     never amplifies a colour (every weight lies in [0, 1]).
 // Every function returns finite values in [0, RK_HDR_MAX] (per channel) for every input, NaN and
-// ±Inf included. Errors quoted are measured by tests/test_bloom.cpp against float64 formulas. GPU
+// ±Inf included. Errors quoted are maxima against float64 formulas over dense samples
+// (docs/dialect.md); tests/test_bloom.cpp checks them. GPU
 // agreement (tests/gpu/parity_bloom.cpp, Mesa llvmpipe): bit-exact for every function except those
 // built on the luminance's dot, which a GPU may fuse (2 ulp), and the knee bright passes, which
 // scale that ulp by the knee's slope 1/K.
@@ -65,8 +66,9 @@ RK_INLINE vec3 rk_bloom_sanitize(vec3 c)
 }
 
 /// rk_bloom_luminance: BT.709 luminance of the sanitised colour, itself sanitised (a luminance
-/// below RK_FLT_MIN is 0). Range [0, RK_HDR_MAX]. Max error vs float64: 2 ulp (1.94 measured); the
-/// GPU's dot may fuse multiply-adds and differ by 2 ulp (llvmpipe: 2). Cost: 1 dot + 4 sanitize.
+/// below RK_FLT_MIN is 0). Range [0, RK_HDR_MAX]. Max error vs float64: 2.2 ulp (4e7 random +
+/// refinement); the GPU's dot may fuse multiply-adds and differ by 2 ulp (llvmpipe: 2).
+/// Cost: 1 dot + 4 sanitize.
 RK_INLINE float rk_bloom_luminance(vec3 rgb) { return rk_bloom_sanitize(rk_luminance(rk_bloom_sanitize(rgb))); }
 
 /// rk_bloom_knee: the knee actually used, min(sanitize(knee), sanitize(threshold)). Exact. Cost: 1 min.
@@ -102,8 +104,9 @@ RK_INLINE float rk_bloom_weight_hard(float lum, float threshold)
 /// (slopes 0 at both ends, 1/K at lum = T where w = 1/2); its integral over lum equals the hard
 /// step's, so on average it passes the same energy. K = 0 gives the hard weight exactly.
 /// Domain: all inputs sanitised, K clamped to [0, T]. Range [0, 1].
-/// Max error vs float64: 4.7e-7 absolute for K >= T / 10; in general 1.1 eps (T + K) / K (the rounding
-/// of T - K amplified by the slope 1/K: 2.5e-5 at K = T / 750). A luminance that differs by an ulp
+/// Max error vs float64 (4e7 random + refinement): 6.4e-7 absolute for K >= T / 10; in general
+/// 0.68 FLT_EPSILON (T + K) / K (the rounding of T - K amplified by the slope 1/K: 4.5e-5 at
+/// K = T / 750). A luminance that differs by an ulp
 /// (GPU fma) moves w by up to ulp / K. Cost: 1 div + ~8 flops + 2 branches.
 RK_INLINE float rk_bloom_weight_soft_knee(float lum, float threshold, float knee)
 {
@@ -129,7 +132,8 @@ RK_INLINE float rk_bloom_weight_soft_knee(float lum, float threshold, float knee
 /// above the knee, so the colour keeps only its part above the threshold. K = 0 gives the hard
 /// subtract max(lum - T, 0) / lum (C0, a kink at T).
 /// Domain: all inputs sanitised, K clamped to [0, T] (then f <= lum, so the factor is in [0, 1]).
-/// Max error vs float64: 9.6e-8 absolute (measured over T in [0, 3], K in [0, 1]). Cost: 2 div + ~8 flops.
+/// Max error vs float64: 1.3e-7 absolute over T in [0, 3], K in [0, 1] (4e7 random + refinement).
+/// Cost: 2 div + ~8 flops.
 RK_INLINE float rk_bloom_weight_subtract(float lum, float threshold, float knee)
 {
     float y = rk_bloom_sanitize(lum);
@@ -169,9 +173,10 @@ RK_INLINE vec3 rk_bloom_bright_pass_hard(vec3 rgb, float threshold)
 
 /// rk_bloom_bright_pass_soft_knee: the sanitised colour times rk_bloom_weight_soft_knee of its
 /// luminance: no pop when a pixel crosses the threshold, identical to the hard pass outside
-/// [T - K, T + K]. Max error vs float64: 8.1e-8 relative per channel (against the float64 weight at
-/// the float luminance +- 1 ulp; see rk_bloom_weight_soft_knee for small K). GPU vs CPU: the
-/// luminance's fma ulp times the slope 1/K (6.7e-6 seen at K = 0.2). Cost: 1 dot + 1 div + ~12 flops.
+/// [T - K, T + K]. Max error vs float64: 9.0e-8 relative per channel (against the float64 weight at
+/// the float luminance +- 1 ulp; 4e7 random + refinement; see rk_bloom_weight_soft_knee for small
+/// K). GPU vs CPU: the luminance's fma ulp times the slope 1/K (6.7e-6 seen at K = 0.2).
+/// Cost: 1 dot + 1 div + ~12 flops.
 RK_INLINE vec3 rk_bloom_bright_pass_soft_knee(vec3 rgb, float threshold, float knee)
 {
     vec3 c = rk_bloom_sanitize(rgb);
@@ -179,8 +184,9 @@ RK_INLINE vec3 rk_bloom_bright_pass_soft_knee(vec3 rgb, float threshold, float k
 }
 
 /// rk_bloom_bright_pass_subtract: the sanitised colour scaled to keep only the luminance above the
-/// threshold (quadratic knee of width 2K around T). Max error vs float64: 1.3e-7 relative per
-/// channel (weight at the float luminance +- 1 ulp). Cost: 1 dot + 2 div + ~12 flops.
+/// threshold (quadratic knee of width 2K around T). Max error vs float64: 1.5e-7 relative per
+/// channel (weight at the float luminance +- 1 ulp; 4e7 random + refinement).
+/// Cost: 1 dot + 2 div + ~12 flops.
 RK_INLINE vec3 rk_bloom_bright_pass_subtract(vec3 rgb, float threshold, float knee)
 {
     vec3 c = rk_bloom_sanitize(rgb);
@@ -199,7 +205,8 @@ RK_INLINE vec3 rk_bloom_bright_pass(vec3 rgb, float threshold, float knee, int m
 /// rk_bloom_karis_weight: Karis's firefly weight 1 / (1 + luminance) of the sanitised colour.
 /// Weighting samples by it before averaging (rk_bloom_karis_average) bounds what one extremely
 /// bright texel contributes (c * w < 1 / 0.0722 per channel), so sub-pixel highlights do not flicker
-/// into big blobs. Range [1e-18, 1]. Max error vs float64: 2.6 ulp (measured). Cost: 1 dot + 1 div.
+/// into big blobs. Range [1e-18, 1]. Max error vs float64: 4.9 ulp (3.1 for channels <= 8; 4e7
+/// random + refinement). Cost: 1 dot + 1 div.
 RK_INLINE float rk_bloom_karis_weight(vec3 rgb) { return 1.0f / (1.0f + rk_bloom_luminance(rgb)); }
 
 /// rk_bloom_weighted_average: sum(w_i c_i) / sum(w_i) of four sanitised colours; the filter weights
@@ -208,8 +215,8 @@ RK_INLINE float rk_bloom_karis_weight(vec3 rgb) { return 1.0f / (1.0f + rk_bloom
 /// tiny weights never make a product denormal (a GPU would flush it). Result within the
 /// channel-wise range of the c_i with a positive weight, up to rounding: 1e-6 relative, plus
 /// RK_FLT_MIN absolute where a product falls below RK_FLT_MIN (a small weight times a colour near
-/// RK_FLT_MIN). Max error vs float64: 2.5e-7 relative (measured). Cost: 1 div, 4 mul, 4 madd (vec3),
-/// 3 add.
+/// RK_FLT_MIN). Max error vs float64: 4.5e-7 relative (4e7 random + refinement). Cost: 1 div,
+/// 4 mul, 4 madd (vec3), 3 add.
 RK_INLINE vec3 rk_bloom_weighted_average(vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec4 w)
 {
     float w0 = min(rk_bloom_sanitize(w.x), 1.0f);
@@ -228,7 +235,7 @@ RK_INLINE vec3 rk_bloom_weighted_average(vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec
 /// contributes ~1/(1 + L) of its weight instead of all of it. Not energy-preserving by design.
 /// The filter weights are scaled so that the largest is 1 before the Karis factors (>= 1e-18)
 /// multiply them, so tiny weights cannot underflow to zero; the range promise is the weighted
-/// average's. Max error vs float64: 3.1e-7 relative (measured).
+/// average's. Max error vs float64: 7.4e-7 relative (4e7 random + refinement).
 /// Cost: 4 dot + 5 div + 3 max + the weighted average.
 RK_INLINE vec3 rk_bloom_karis_average(vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec4 w)
 {
@@ -246,7 +253,8 @@ RK_INLINE vec3 rk_bloom_karis_average(vec3 c0, vec3 c1, vec3 c2, vec3 c3, vec4 w
 /// GL_LINEAR fetch at u = frag / dst would. For a 2:1 reduction it lands on the corner between
 /// four texels (a 2x2 box). Domain: any float: sizes clamped to [1, 65536] and frag to
 /// [0, dst_size], NaN taken as the lower bound (every result is in [-0.5, src_size - 0.5]). Max
-/// error: 2 roundings (< 1e-6 texel for sizes < 4096). Cost: 1 div + 1 madd, 3 compares.
+/// error: 2 roundings (< 2.5e-4 texel for sizes < 4096; 2e7 random + refinement).
+/// Cost: 1 div + 1 madd, 3 compares.
 RK_INLINE float rk_bloom_source_texel(float frag, float dst_size, float src_size)
 {
     float d = dst_size > 1.0f ? min(dst_size, 65536.0f) : 1.0f;
@@ -259,7 +267,8 @@ RK_INLINE float rk_bloom_source_texel(float frag, float dst_size, float src_size
 /// texels floor(p) + (0,0), (1,0), (0,1), (1,1), in that order. The fraction is p - floor(p) (not
 /// fract(), to read the same in both languages). Sum 1 up to one rounding, each weight in [0, 1].
 /// Domain: any float: p clamped to [-1e7, 1e7], NaN taken as -1e7 (weights (1, 0, 0, 0)). Max
-/// error: 2 roundings per weight. Cost: 2 floor + 6 flops.
+/// error: 9.0e-8 absolute per weight (2 roundings; not in ulps of a weight near 0; 4e7 random +
+/// refinement). Cost: 2 floor + 6 flops.
 RK_INLINE vec4 rk_bloom_bilinear_weights(vec2 p)
 {
     float px = p.x > -1.0e7f ? min(p.x, 1.0e7f) : -1.0e7f;
@@ -272,7 +281,8 @@ RK_INLINE vec4 rk_bloom_bilinear_weights(vec2 p)
 /// rk_bloom_sum_levels: w.x l0 + w.y l1 + w.z l2 + w.w l3 of the (magnified) blurred levels. Colours
 /// sanitised, weights sanitised and clamped to [0, RK_BLOOM_WEIGHT_MAX]; result clamped to
 /// RK_HDR_MAX. The thesis adds the 4 levels with weight 1; the energy-preserving composites want
-/// weights summing to 1. Max error vs float64: 1.8e-7 relative (measured). Cost: 4 madd (vec3).
+/// weights summing to 1. Max error vs float64: 2.4e-7 relative (4e7 random + refinement).
+/// Cost: 4 madd (vec3).
 RK_INLINE vec3 rk_bloom_sum_levels(vec3 l0, vec3 l1, vec3 l2, vec3 l3, vec4 w)
 {
     vec3 s = min(rk_bloom_sanitize(w.x), RK_BLOOM_WEIGHT_MAX) * rk_bloom_sanitize(l0) +
@@ -284,7 +294,8 @@ RK_INLINE vec3 rk_bloom_sum_levels(vec3 l0, vec3 l1, vec3 l2, vec3 l3, vec4 w)
 
 /// rk_bloom_composite_add: the thesis's composite hdr + strength * bloom (both sanitised; strength
 /// sanitised and clamped to [0, RK_BLOOM_WEIGHT_MAX]; result clamped to RK_HDR_MAX). Adds energy:
-/// a scene lit above the threshold gets brighter. Max error vs float64: 1.1e-7 relative (measured).
+/// a scene lit above the threshold gets brighter. Max error vs float64: 1.2e-7 relative (4e7
+/// random + refinement).
 /// Cost: 1 madd (vec3).
 RK_INLINE vec3 rk_bloom_composite_add(vec3 hdr, vec3 bloom, float strength)
 {
@@ -297,7 +308,7 @@ RK_INLINE vec3 rk_bloom_composite_add(vec3 hdr, vec3 bloom, float strength)
 /// clamped to RK_HDR_MAX (the two products can round one ulp above it). Preserves
 /// energy when bloom is a normalised blur of the whole image (threshold 0); with a threshold it
 /// also darkens everything below it by (1 - s) — see rk_bloom_composite_conserve.
-/// Max error vs float64: 1.7e-7 relative (measured). Cost: 2 mul + 1 add (vec3).
+/// Max error vs float64: 1.8e-7 relative (4e7 random + refinement). Cost: 2 mul + 1 add (vec3).
 RK_INLINE vec3 rk_bloom_composite_mix(vec3 hdr, vec3 bloom, float strength)
 {
     float s = rk_saturate(rk_bloom_sanitize(strength));
@@ -310,7 +321,9 @@ RK_INLINE vec3 rk_bloom_composite_mix(vec3 hdr, vec3 bloom, float strength)
 /// total energy is kept (up to the black border and the Karis weighting) and pixels below the
 /// threshold stay untouched; with threshold 0 and the hard mode it equals rk_bloom_composite_mix.
 /// s = strength clamped to [0, 1]; colours sanitised; hdr - s bright floored at 0 (in case bright
-/// was not derived from hdr). Max error vs float64: 1.2e-7 relative (measured). tests/test_bloom.cpp
+/// was not derived from hdr). Max error vs float64: 1.2e-7 of hdr + s bloom per channel (4e7
+/// random + refinement; relative to the result it is unbounded where hdr - s bright cancels).
+/// tests/test_bloom.cpp
 /// measures the energy change of a whole CONSERVE bloom: 1.4e-9 relative (ADD: +19%).
 /// Cost: 2 madd + 1 max (vec3).
 RK_INLINE vec3 rk_bloom_composite_conserve(vec3 hdr, vec3 bright, vec3 bloom, float strength)

@@ -48,7 +48,7 @@ RK_INLINE vec3 rk_envmap_clamp_pos(vec3 v)
 /// rk_envmap_normalize: v / |v| for any finite v without overflow or underflow (components are
 /// first scaled by the largest |component|, brought below 2.7e8 by the exact factor 2^-100 so that
 /// its reciprocal is a normal float); `fallback` when every |component| is below RK_FLT_MIN.
-/// Max error: 3.5 ulp per component against float64 (3.4 measured by test_adversarial).
+/// Max error: 3.8 ulp per component against float64 (4e7 random + refinement).
 /// Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
 {
@@ -64,7 +64,7 @@ RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
 /// rk_envmap_angle: the angle in [0, π] radians whose cosine is cos_nr (clamped to [-1, 1]),
 /// evaluated as atan(sqrt(1 - c^2), c): GLSL leaves acos's precision to the driver (Mesa's asin
 /// is 4e-4 rad off, see fresnel.glsl), atan agrees to 4e-6. Max error: 4e-6 rad on llvmpipe,
-/// 2 ulp on the CPU. Cost: 1 sqrt, 1 atan.
+/// 2.3 ulp on the CPU (every 4th float in [-1, 1] + refinement). Cost: 1 sqrt, 1 atan.
 RK_INLINE float rk_envmap_angle(float cos_nr)
 {
     float c = clamp(cos_nr, -1.0f, 1.0f);
@@ -75,8 +75,9 @@ RK_INLINE float rk_envmap_angle(float cos_nr)
 /// thesis's a = -4.7, k = 0.9 and x the angle between N and R in radians (x is unstated there):
 /// σ(0) = 0.98566, σ(0.5) = 0.8676, σ(0.9) = 0.5, σ(1.2) = 0.1962, σ(π/2) = 0.04098, i.e. close to
 /// cos x at small angles and closer to cos^2 x towards grazing. Domain: x, a, k clamped to ±1e6,
-/// the exponent to ±80 (σ stays in [1.8e-35, 1]). Max error: that of the driver's exp
-/// (2e-7 relative on the CPU). Cost: 1 exp, 1 div, 3 flops.
+/// the exponent to ±80 (σ stays in [1.8e-35, 1]). Max error: that of the driver's exp; on the CPU
+/// ~1.2e-7 (1 + |a (x - k)|) relative, the rounding of x - k amplified by the exponent (1.2e-6
+/// for the thesis a, k on [0, π]; dense x + 2e7 random + refinement). Cost: 1 exp, 1 div, 3 flops.
 RK_INLINE float rk_envmap_sigmoid(float x, float a, float k)
 {
     float xc = clamp(x, -1.0e6f, 1.0e6f);
@@ -91,11 +92,12 @@ RK_INLINE float rk_envmap_sigmoid(float x, float a, float k)
 /// Domain: cos_nr clamped to [-1, 1]; a, k as rk_envmap_sigmoid. With the thesis's a, k:
 /// cos_nr = 1 gives σ(0) = 0.98566, 0 (grazing) σ(π/2) = 0.04098, -1 σ(π) = 2.66e-5: positive and
 /// decreasing over the whole range, never 0.
-/// Max error vs float64 σ(acos(cos_nr)) at the float cos_nr: 1.6e-7 absolute on the CPU (thesis
-/// a, k; tests/test_envmap_correction.cpp SigmoidPublishedValues asserts 1e-6); on llvmpipe the
-/// driver's atan adds up to 2.8e-6 (a in [-8, 8]; GPU parity). Near cos_nr = 1 acos is
-/// ill-conditioned: a rounding δ of cos_nr (6e-8 for a float dot of unit vectors) moves the angle by
-/// up to sqrt(2 δ) = 3.5e-4 rad, the weight by up to 2.3e-5 (|σ'(0)| = 0.066).
+/// Max error vs float64 σ(acos(cos_nr)) at the float cos_nr: 1.9e-7 absolute on the CPU (thesis
+/// a, k; every 4th float + refinement; tests/test_envmap_correction.cpp SigmoidPublishedValues
+/// asserts 1e-6); on llvmpipe the driver's atan adds up to 2.8e-6 (a in [-8, 8]; GPU parity).
+/// Near cos_nr = 1 acos is ill-conditioned: a rounding δ of cos_nr (6e-8 for a float dot of unit
+/// vectors) moves the angle by up to sqrt(2 δ) = 3.5e-4 rad, the weight by up to 2.3e-5
+/// (|σ'(0)| = 0.066).
 /// Cost: 1 sqrt, 1 atan, 1 exp, 1 div, ~6 flops, 5 clamps.
 RK_INLINE float rk_envmap_fahlen_weight(float cos_nr, float a, float k)
 {
@@ -121,9 +123,9 @@ RK_INLINE vec3 rk_reflect_correct_sphere(vec3 r_dir, vec3 cp, float radius)
 /// Domain: R, N unit (dot(N, R) is used as the cosine as it is); N·R clamped to [0, 1], d to
 /// [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX: finite for every finite input. Edge cases: R
 /// parallel to or behind the window (N·R <= 0) and CP = 0 return R exactly.
-/// Max error vs float64 R + CP max(N·R, 0) / d: 3.1e-7 of |R| + |CP| N·R / d (random unit R, N,
-/// |CP| <= 50; relative to the terms because R' itself cancels to 0 where CP N·R / d = -R;
-/// tests/test_envmap_correction.cpp FahlenIsThePlaneModelWithSigmaForCos asserts 1e-6).
+/// Max error vs float64 R + CP max(N·R, 0) / d: 4.4e-7 of |R| + |CP| N·R / d (relative to the
+/// terms because R' itself cancels to 0 where CP N·R / d = -R; 2e7 random unit R, N, |CP| <= 50 +
+/// refinement; tests/test_envmap_correction.cpp FahlenIsThePlaneModelWithSigmaForCos asserts 1e-6).
 /// Cost: 1 dot, 1 div, 3 mul, 3 add, 5 clamps.
 RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d)
 {
@@ -145,10 +147,11 @@ RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d
 /// [1e-18, 1e18], a and k as rk_envmap_sigmoid, vectors to ±RK_ENVMAP_POS_MAX: finite for every
 /// finite input. CP = 0 returns R.
 /// Max error vs float64 R + CP σ(acos(N·R)) / d, relative to |R| + |CP| σ / d (R' itself can
-/// cancel to 0), random unit R, N and |CP| <= 50 m: 3.5e-7 with the thesis's constants, 6.6e-7
-/// with d in [2, 40], a in [-8, -1], k in [0.3, 1.5]. Near normal incidence (angle < 0.05 rad) the
-/// rounding of the float N·R dominates (see rk_envmap_fahlen_weight): 2.2e-5 (thesis constants),
-/// 1.1e-4 (a down to -8), and 1.3e-7 against float64 at the float N·R
+/// cancel to 0), random unit R, N and |CP| <= 50 m (2e7 each + refinement): 5.0e-7 with the
+/// thesis's constants; with d in [2, 40], a in [-8, -1], k in [0.3, 1.5], 1.6e-6 for angles in
+/// [0.05, π - 0.05] (acos is ill-conditioned near π: up to 8.3e-5 there). Near normal incidence
+/// (angle < 0.05 rad) the rounding of the float N·R dominates (see rk_envmap_fahlen_weight):
+/// 2.7e-5 (thesis constants), 3.0e-4 (a down to -8), and 1.7e-7 against float64 at the float N·R
 /// (tests/test_envmap_correction.cpp FahlenMatchesFloat64ThesisFormula prints the worst inputs).
 /// Cost: 1 dot, 1 sqrt, 1 atan, 1 exp, 2 div, ~17 flops, 9 clamps.
 RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp, float d, float a, float k)
@@ -161,7 +164,7 @@ RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp, float d, f
 /// rk_reflect_correct_fahlen (thesis constants): a = -4.7, k = 0.9, d = 8 m; bit-identical to the
 /// 6-argument form with those values. Example: N = +z, R = (0.6, 0, 0.8), CP = (8, -16, 4) give
 /// σ(acos 0.8) = 0.76951 and R' = (1.36951, -1.53902, 1.18475). Domain, edge cases, max error
-/// (3.5e-7 of |R| + |CP| σ / d; 2.2e-5 within 0.05 rad of normal incidence) and cost as above.
+/// (5.0e-7 of |R| + |CP| σ / d; 2.7e-5 within 0.05 rad of normal incidence) and cost as above.
 RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp)
 {
     return rk_reflect_correct_fahlen(r_dir, n, cp, RK_ENVMAP_FAHLEN_D, RK_ENVMAP_FAHLEN_A, RK_ENVMAP_FAHLEN_K);
@@ -177,7 +180,9 @@ RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp)
 /// result would be zero (R = 0 or both cases at once) R is returned. With CP·N = 0 the direction
 /// equals the thesis's plane model rk_reflect_correct_plane_cos. N is normalised internally
 /// (N = 0 counts as +z); R any non-zero length. Max error: the hit C + result / (R̂·N) lies on the
-/// plane to 1.1e-6 of its distance from C (tests/test_envmap_correction.cpp prints it).
+/// plane to ~1.2e-7 |CP·N| / (R̂·N |H - C|) of its distance from C, the rounding of R̂·N (4.9e-5
+/// for R̂·N >= 1e-3, P near the plane, in the test's set-up: 2e7 random + refinement;
+/// tests/test_envmap_correction.cpp prints it).
 /// Cost: 2 normalisations, 2 dot, 6 fma.
 RK_INLINE vec3 rk_reflect_correct_plane(vec3 r_dir, vec3 p, vec3 c, vec3 n, float d)
 {

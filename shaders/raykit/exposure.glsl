@@ -80,9 +80,10 @@ RK_INLINE float rk_exposure_clamp(float x, float lo, float hi) { return x > lo ?
 /// Domain: any float lum (sanitised: negative/NaN -> 0, +Inf -> RK_HDR_MAX); delta clamped to
 /// [0, RK_HDR_MAX] (NaN -> 0); delta + L is floored at RK_FLT_MIN, so delta = 0 maps black to
 /// -126 instead of -Inf. Range: [-126, 60.8].
-/// Max error vs float64 log2(delta + L): 1.3e-7 * max(1, |result|) on the CPU (1 ulp of log2 plus
-/// the rounding of delta + L); llvmpipe's log2 is within 1.9e-6 absolute of the CPU build at
-/// 20 stops (parity_exposure.cpp). Cost: 1 add, 1 max, 1 log2, sanitise.
+/// Max error vs float64 log2(delta + L): 1.5e-7 * max(1, |result|) on the CPU (1 ulp of log2 plus
+/// the rounding of delta + L; every float L for 4 deltas + 4e7 random + refinement); llvmpipe's
+/// log2 is within 1.9e-6 absolute of the CPU build at 20 stops (parity_exposure.cpp).
+/// Cost: 1 add, 1 max, 1 log2, sanitise.
 RK_INLINE float rk_log2_luminance(float lum, float delta)
 {
     float d = rk_exposure_clamp(delta, 0.0f, RK_HDR_MAX);
@@ -91,7 +92,8 @@ RK_INLINE float rk_log2_luminance(float lum, float delta)
 
 /// rk_log2_luminance (RGB): the term for a linear Rec.709 colour: channels sanitised first (so a
 /// NaN or negative channel counts as 0, not the whole pixel), then BT.709 luminance.
-/// Same domain, range and error as the scalar form (plus 2 ulp of the dot). Cost: 1 dot + scalar form.
+/// Same domain, range and error as the scalar form (plus 2.2 ulp of the dot).
+/// Cost: 1 dot + scalar form.
 RK_INLINE float rk_log2_luminance(vec3 rgb, float delta)
 {
     return rk_log2_luminance(rk_luminance(rk_hdr_sanitize(rgb)), delta);
@@ -102,7 +104,9 @@ RK_INLINE float rk_log2_luminance(vec3 rgb, float delta)
 /// Domain: any floats; count clamped to [1, RK_FLT_MAX] (an empty image gives exp2(sum)), the mean
 /// to [RK_LOG2_LUM_MIN, RK_LOG2_LUM_MAX] (NaN -> the minimum). Range: [RK_FLT_MIN, ~1e18].
 /// The result still contains delta (Eq. 3.14 as written; subtract it for images without black).
-/// Max error: 1 division and 1 exp2 (2 ulp relative, CPU; 3 ulp on llvmpipe). Cost: 1 div, 1 exp2.
+/// Max error (CPU): 2 (1 + 0.35 |mean|) ulp relative, the rounding of sum / count amplified by exp2
+/// (0.85 ulp for |mean| <= 1, 45 ulp at |mean| ~ 85-126; 2.5e7 random + refinement); llvmpipe
+/// adds ~1 ulp. Cost: 1 div, 1 exp2.
 RK_INLINE float rk_log_average_from_sum(float sum_log2, float count)
 {
     float n = rk_exposure_clamp(count, 1.0f, RK_FLT_MAX);
@@ -121,9 +125,9 @@ RK_INLINE float rk_log_average_from_sum(float sum_log2, float count)
 /// saturates the key to [0.045, 0.72]); the range is floored at RK_REINHARD_MIN_RANGE stops, so flat
 /// images give ~0.18 instead of 0/0. Use Lmin/Lmax of the same delta + L term as the log-average.
 /// Test vectors (Fahlén 2005 Eq. 3.18, Lmin 0.01, Lmax 100): Lavg 1 -> 0.18, 10 -> 0.36, 0.1 -> 0.09.
-/// Max error vs float64 (test_exposure): 3.6e-7 relative for ranges >= 1 stop; on narrower ranges
-/// it grows as ~3.2e-7 / range (stops), the size of the change a 1-ulp perturbation of the inputs
-/// causes (the function is that ill-conditioned there). Cost: 3 div, 3 log2, 1 exp2.
+/// Max error vs float64 (4e7 random + refinement): 6.1e-7 relative for ranges >= 1 stop; on
+/// narrower ranges it grows as ~5.5e-7 / range (stops), the size of the change a 1-ulp perturbation
+/// of the inputs causes (the function is that ill-conditioned there). Cost: 3 div, 3 log2, 1 exp2.
 RK_INLINE float rk_reinhard_auto_key(float log_average, float lum_min, float lum_max)
 {
     float la = rk_exposure_clamp(log_average, RK_REINHARD_LUM_MIN, RK_HDR_MAX);
@@ -140,8 +144,9 @@ RK_INLINE float rk_reinhard_auto_key(float log_average, float lum_min, float lum
 ///   L_white = 1.5 * 2^(log2 Lmax - log2 Lmin - 5),
 /// in the units of the scaled luminance L_s. 5 stops of range give 1.5; Lmin 0.01, Lmax 100 give
 /// 468.75. Domain: as rk_reinhard_auto_key (either order); the exponent is clamped to [-5, 59],
-/// so the result lies in [0.046875, 1.5 * 2^59 ~ 8.6e17]. Max error vs float64: 8e-7 relative
-/// (test_exposure; exp2 of an exponent of up to ~27 stops there). Cost: 1 div, 1 log2, 1 exp2.
+/// so the result lies in [0.046875, 1.5 * 2^59 ~ 8.6e17]. Max error vs float64 (2e7 random +
+/// refinement): 8.2e-7 relative for Lmin in [1e-6, 1e3], Lmax / Lmin <= 1e8 (test_exposure's
+/// domain), 1.5e-6 over [1e-18, 1e18] (exp2 of a larger exponent). Cost: 1 div, 1 log2, 1 exp2.
 RK_INLINE float rk_reinhard_auto_white(float lum_min, float lum_max)
 {
     float a = rk_exposure_clamp(lum_min, RK_REINHARD_LUM_MIN, RK_HDR_MAX);
@@ -152,8 +157,8 @@ RK_INLINE float rk_reinhard_auto_white(float lum_min, float lum_max)
 /// rk_ev100_from_luminance: exposure value at ISO 100 of an average scene luminance (cd/m^2),
 /// EV100 = log2(L * S / K) = log2(8 L) (Lagarde & de Rousiers 2014, Eq. 12; S = 100, K = 12.5).
 /// Domain: lum sanitised and floored at RK_FLT_MIN; range [-123, 62.8]. Max error vs float64:
-/// 1.9e-6 absolute for L in [1e-12, 1e12] (half an ulp of log2 at 38 EV; the scaling by 8 is
-/// exact). Cost: 1 mul, 1 log2.
+/// 2.0e-6 absolute over every float L in [1e-12, 1e12] (half an ulp of log2 at 38 EV; the scaling
+/// by 8 is exact). Cost: 1 mul, 1 log2.
 RK_INLINE float rk_ev100_from_luminance(float lum)
 {
     return log2(max(rk_hdr_sanitize(lum), RK_FLT_MIN) * (RK_EV100_S / RK_EV100_K));
@@ -161,8 +166,9 @@ RK_INLINE float rk_ev100_from_luminance(float lum)
 
 /// rk_ev100_from_camera: EV100 of physical camera settings, log2(N^2 / t * 100 / S) for f-number
 /// N, shutter time t (s) and ISO S (Lagarde & de Rousiers 2014, Eq. 7). Domain: each clamped to
-/// [1e-6, 1e6] (NaN -> 1e-6). f/16, 1/100 s, ISO 100 gives 14.64. Max error vs float64: 1.2e-6
-/// absolute over f/1-f/22, 1e-4-10 s, ISO 50-12800 (test_exposure). Cost: 3 mul/div, 1 log2.
+/// [1e-6, 1e6] (NaN -> 1e-6). f/16, 1/100 s, ISO 100 gives 14.64. Max error vs float64: 1.3e-6
+/// absolute over f/1-f/22, 1e-4-10 s, ISO 50-12800 (2e7 random + refinement).
+/// Cost: 3 mul/div, 1 log2.
 RK_INLINE float rk_ev100_from_camera(float aperture, float shutter_time, float iso)
 {
     float n = rk_exposure_clamp(aperture, 1.0e-6f, 1.0e6f);
@@ -174,7 +180,8 @@ RK_INLINE float rk_ev100_from_camera(float aperture, float shutter_time, float i
 /// rk_exposure_from_ev100: the scale that maps scene luminance to the sensor's [0, 1] range,
 /// 1 / (1.2 * 2^EV100) (Lagarde & de Rousiers 2014, Eq. 19: 1.2 * 2^EV100 is the saturating
 /// luminance, q = 0.65, 78 / (q S) * N^2 / t). Domain: EV100 clamped to [-64, 64] (NaN -> -64),
-/// result in [4.5e-20, 1.5e19]. Max error: 1 ulp of exp2 plus 1 division. Cost: 1 exp2, 1 div.
+/// result in [4.5e-20, 1.5e19]. Max error: 1.9 ulp (exp2, 1 division and the rounding of 1.2f;
+/// every float in [-64, 64]). Cost: 1 exp2, 1 div.
 RK_INLINE float rk_exposure_from_ev100(float ev100)
 {
     return exp2(-rk_exposure_clamp(ev100, -RK_EV100_LIMIT, RK_EV100_LIMIT)) / 1.2f;
@@ -184,8 +191,8 @@ RK_INLINE float rk_exposure_from_ev100(float ev100)
 /// compensation in stops (positive brightens): rk_exposure_from_ev100(EV100(L) - compensation).
 /// Without compensation, lum * exposure = 1 / 9.6 = 0.104 (the average lands at ~10% of the
 /// saturating luminance). Domain: lum as rk_ev100_from_luminance, compensation clamped to [-64, 64]
-/// (NaN -> -64). Max error vs float64: 1.5e-6 relative for L in [1e-12, 1e12] (the log2/exp2
-/// round trip; test_exposure).
+/// (NaN -> -64). Max error vs float64 (the log2/exp2 round trip): 1.5e-6 relative for every float
+/// L in [1e-12, 1e12] with compensation 0; 2.8e-6 with any compensation (2e7 random + refinement).
 /// Cost: 1 log2, 1 exp2, 1 div.
 RK_INLINE float rk_exposure_from_luminance(float lum, float compensation)
 {
@@ -248,8 +255,9 @@ RK_INLINE float rk_adapt_factor(float dt, float tau)
 /// exactly. Float resolution: a step below half an ulp rounds to no move, so the state settles
 /// within ~0.5 ulp / (1 - exp(-dt / tau)) of the target (2.9e-4 stops at 40 stops, 60 fps,
 /// tau 2.5 s; 1.4e-4 at 20 stops). Domain: x and target clamped to [RK_LOG2_LUM_MIN,
-/// RK_LOG2_LUM_MAX] (NaN -> minimum); dt, tau as rk_adapt_exponent. Max error vs float64: 1.2e-6
-/// absolute on |x|, |target| <= 20. Cost: 1 exp (or the series), 1 div, ~8 flops.
+/// RK_LOG2_LUM_MAX] (NaN -> minimum); dt, tau as rk_adapt_exponent. Max error vs float64: 5.5e-6
+/// absolute on |x|, |target| <= 20 (~1.5 ulp of |target - x|; 2e7 random + refinement).
+/// Cost: 1 exp (or the series), 1 div, ~8 flops.
 RK_INLINE float rk_adapt_log2(float current_log2, float target_log2, float dt, float tau_up, float tau_down)
 {
     float c = rk_exposure_clamp(current_log2, RK_LOG2_LUM_MIN, RK_LOG2_LUM_MAX);
@@ -318,7 +326,8 @@ RK_INLINE uint rk_histogram_bin(float x_log2, float min_log2, float max_log2, ui
 
 /// rk_histogram_bin_edge: the log2 luminance of the lower edge of bin `edge` (bin `bins` gives the
 /// upper edge of the range): min + edge * (max - min) / bins. Same clamping of the range as
-/// rk_histogram_bin; never above max_log2. Max error: 2 ulp. Cost: 1 div, 3 flops.
+/// rk_histogram_bin; never above max_log2. Max error: 3.6 ulp of max(|min_log2|, |max_log2|) (not
+/// of the result, which may be near 0; 2e7 random + refinement). Cost: 1 div, 3 flops.
 RK_INLINE float rk_histogram_bin_edge(float edge, float min_log2, float max_log2, uint bins)
 {
     uint n = clamp(bins, 1u, 16777216u);
@@ -362,7 +371,8 @@ RK_INLINE rk_histogram_scan rk_histogram_scan_init()
 /// rk_histogram_rank_in_bin: the log2 value at rank r inside a bin of `count` pixels that starts at
 /// rank `below`, assuming the pixels spread uniformly over [edge_lo, edge_hi]. Domain: the fraction
 /// (r - below) / count is clamped to [0, 1] (count floored at 1, NaN -> 0); edges clamped to
-/// [-1024, 1024] (NaN -> -1024). Max error: 3 ulp of the edges. Cost: 1 div, 3 flops.
+/// [-1024, 1024] (NaN -> -1024). Max error: 3.1 ulp of the edges (2e7 random + refinement).
+/// Cost: 1 div, 3 flops.
 RK_INLINE float rk_histogram_rank_in_bin(float rank, float below, float count, float edge_lo, float edge_hi)
 {
     float f = rk_exposure_clamp((rank - below) / rk_exposure_clamp(count, 1.0f, RK_FLT_MAX), 0.0f, 1.0f);

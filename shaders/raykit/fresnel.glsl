@@ -55,7 +55,8 @@ RK_INLINE float rk_fresnel_clamp_eta(float eta)
 
 /// rk_f0_from_ior: reflectance at normal incidence ((n1 - n2) / (n1 + n2))^2 between media of
 /// indices n1 and n2. Domain: n1, n2 > 0 (clamped to [RK_FLT_MIN, 1e30]).
-/// Max error: 3 ulp. Cost: 1 add, 1 sub, 1 div, 1 mul. F0(1, 1.52) = 0.0425800.
+/// Max error: 5.5 ulp (9e7 random (n1, n2) + refinement). Cost: 1 add, 1 sub, 1 div, 1 mul.
+/// F0(1, 1.52) = 0.0425800.
 RK_INLINE float rk_f0_from_ior(float n1, float n2)
 {
     float a = clamp(n1, RK_FLT_MIN, 1e30f);
@@ -64,7 +65,8 @@ RK_INLINE float rk_f0_from_ior(float n1, float n2)
 }
 
 /// rk_f0_from_eta: F0 for a relative index eta = n_t / n_i: ((eta - 1) / (eta + 1))^2.
-/// Domain: eta >= 0 (clamped to [0, 1e30]). Max error: 3 ulp. Cost: 1 div, 3 flops.
+/// Domain: eta >= 0 (clamped to [0, 1e30]). Max error: 4.5 ulp (every 4th float in [0, 1e30] +
+/// refinement). Cost: 1 div, 3 flops.
 RK_INLINE float rk_f0_from_eta(float eta)
 {
     float e = clamp(eta, 0.0f, 1e30f);
@@ -73,8 +75,9 @@ RK_INLINE float rk_f0_from_eta(float eta)
 
 /// rk_eta_from_f0: the relative index eta >= 1 whose F0 is f0 (inverse of rk_f0_from_eta on its
 /// external branch): (1 + sqrt(F0)) / (1 - sqrt(F0)). Domain: f0 in [0, 1), clamped to
-/// [0, 0.9999990]; f0 -> 1 gives eta ~ 4e6 instead of inf. Max error: 4 ulp relative plus the
-/// conditioning of the inverse near f0 = 1. Cost: 1 sqrt, 1 div.
+/// [0, 0.9999990]; f0 -> 1 gives eta ~ 4e6 instead of inf. Max error: 2.7 ulp for f0 <= 0.5;
+/// within 8 + kappa ulp, kappa = sqrt(f0) / (1 - f0) the conditioning of the inverse near f0 = 1
+/// (every 4th float + refinement). Cost: 1 sqrt, 1 div.
 RK_INLINE float rk_eta_from_f0(float f0)
 {
     float s = sqrt(clamp(f0, 0.0f, 0.9999990f));
@@ -84,8 +87,8 @@ RK_INLINE float rk_eta_from_f0(float f0)
 /// rk_fresnel_schlick: Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (thesis Eq. 3.6).
 /// Domain: cos_i and f0 clamped to [0, 1]. Error vs the exact dielectric: 0.0345 max for glass
 /// n = 1.52 (near 85°), 0.060 for water (1.33); exact at 0° and 90°. Max error vs float64 of its own
-/// formula: 2.3e-7 (near cos 0.04: the rounding of 1 - cos, x5 through the fifth power;
-/// test_fresnel SchlickFormsMatchTextbook). Cost: 5 flops, no division.
+/// formula: 3.4e-7 at small cos (the rounding of 1 - cos, x5 through the fifth power; dense cos
+/// sweeps for 7 f0 + 6e7 random (cos, f0) + refinement). Cost: 5 flops, no division.
 RK_INLINE float rk_fresnel_schlick(float cos_i, float f0)
 {
     float f = rk_saturate(f0);
@@ -94,7 +97,7 @@ RK_INLINE float rk_fresnel_schlick(float cos_i, float f0)
 
 /// rk_fresnel_schlick (RGB F0): per-channel Schlick, e.g. for metals' F0 colour.
 /// Same domain, error and cost (x3 lanes) as the scalar form: each channel is the scalar form's
-/// arithmetic, bit for bit (max error vs float64 2.3e-7; test_fresnel SchlickFormsMatchTextbook).
+/// arithmetic, bit for bit (max error vs float64 3.4e-7).
 RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0)
 {
     vec3 f = clamp(f0, vec3(0.0f), vec3(1.0f));
@@ -104,7 +107,7 @@ RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0)
 /// rk_fresnel_schlick (with f90): F0 + (F90 - F0)(1 - cos)^5, the generalisation used for
 /// specular occlusion / energy terms. f0, f90 and cos_i clamped to [0, 1]; f90 = 1 gives the
 /// two-argument form bit for bit; f90 < f0 is allowed (reflectance falls toward grazing).
-/// Max error vs float64: 2.3e-7 (test_fresnel SchlickFormsMatchTextbook). Cost: 5 flops.
+/// Max error vs float64: 3.1e-7 (6e7 random (cos, f0, f90) + refinement). Cost: 5 flops.
 RK_INLINE float rk_fresnel_schlick(float cos_i, float f0, float f90)
 {
     float a = rk_saturate(f0);
@@ -112,7 +115,7 @@ RK_INLINE float rk_fresnel_schlick(float cos_i, float f0, float f90)
 }
 
 /// rk_fresnel_schlick (RGB F0 and F90): the f90 form per channel, bit for bit; same domain and
-/// max error (2.3e-7 vs float64; test_fresnel SchlickFormsMatchTextbook). Cost: 5 flops x3 lanes.
+/// max error (3.1e-7 vs float64). Cost: 5 flops x3 lanes.
 RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0, vec3 f90)
 {
     vec3 a = clamp(f0, vec3(0.0f), vec3(1.0f));
@@ -129,11 +132,12 @@ RK_INLINE vec3 rk_fresnel_schlick(float cos_i, vec3 f0, vec3 f90)
 /// which is algebraically the textbook (cos_i - eta cos_t)/(cos_i + eta cos_t) pair but has no
 /// 0/0 at normal incidence and keeps full relative precision at matched indices (eta -> 1), where
 /// it returns exactly 0 (including the grazing limit cos = 0, eta = 1).
-/// Domain: all finite cos_i, eta (see the file header). Max error vs float64: 5.6e-7 absolute for
-/// external reflection (eta = 1.52; mean 2.9e-8). Near the critical angle of internal reflection
-/// R is infinitely steep in cos, so the error at a given float input grows to 1e-5 there; measured
-/// against the float64 range over cos +- 1 ulp (the input's own rounding) it stays below 1.5e-6
-/// (tests/test_fresnel.cpp prints the worst input).
+/// Domain: all finite cos_i, eta (see the file header). Max error vs float64, external reflection:
+/// 8.5e-7 absolute for eta = 1.52 (every 4th cos float + refinement; mean 2.9e-8), 9.5e-7 for any
+/// eta > 1 (6e7 random + refinement). Near the critical angle of internal reflection R is
+/// infinitely steep in cos, so the error at a given float input grows to 3.7e-3 there (3.6e-4 for
+/// glass -> air); measured against the float64 range over cos +- 1 ulp (the input's own rounding)
+/// it stays below 1.5e-6 (tests/test_fresnel.cpp prints the worst input).
 /// Cost: 1 sqrt, 2 div, ~14 flops.
 /// TIR: when eta < 1 and cos_i < sqrt(1 - eta^2), i.e. above rk_critical_angle(eta).
 RK_INLINE vec2 rk_fresnel_dielectric_sp(float cos_i, float eta)
@@ -182,7 +186,7 @@ RK_INLINE vec3 rk_fresnel_fast_params(float eta)
 /// ~ g0 + (eta - g0) cos^2, which is exact at 0° and 90° (so F0 and the grazing 1 are exact),
 /// then the textbook rs, rp fused over one division.
 /// Max abs error vs exact (measured over cos in [0,1]): 1.7e-3 for eta = 1.52 (Schlick: 3.45e-2),
-/// 3.7e-3 for 1.33 (Schlick: 6.0e-2), 3.5e-4 for 2.0, 1.3e-2 for 1.1 (Schlick: 0.21); it grows
+/// 3.7e-3 for 1.33 (Schlick: 6.0e-2), 3.5e-4 for 2.0, 1.4e-2 for 1.1 (Schlick: 0.22); it grows
 /// without bound as eta -> 1: at eta = 1 the chord gives ((1 - cos) / (1 + cos))^2 (0.67 at cos
 /// 0.1) for cos > ~1e-10, where the exact reflectance is 0. Range [0, 1] for every input.
 /// Cost: 1 div + ~16 flops, no sqrt (params precomputed). Domain: cos_i clamped to [0, 1];
@@ -210,11 +214,12 @@ RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, float eta)
 /// (eta >= 1) as a per-material polynomial F ~ f0 + (1 - cos) q(cos), q of degree 4 fitted minimax
 /// to the exact reflectance; exact at normal incidence (F0). Params p0 = (f0, q0, q1, q2),
 /// p1 = (q3, q4) come from the CPU helper rk_fresnel_poly_params (fresnel.hpp), which also returns
-/// the fit's measured max error. Max abs error vs exact (10^6 cosines, float evaluation): 3.3e-3
-/// for eta 1.52 (Schlick 3.45e-2), 3.6e-3 for 1.33 (Schlick 6.0e-2), 4.7e-3 for 2.0, 5.3e-3 for
-/// 1.2, 7.2e-3 for 2.5; at most 4.9e-3 for eta in [1.25, 2.05]. Cost: 1 add + 5 multiply-adds
-/// (Schlick: 5 flops), no division or sqrt. Domain: cos_i clamped to [0, 1]; any finite
-/// constants; result in [0, 1] (0 where huge constants overflow to NaN).
+/// the fit's measured max error. Max abs error vs exact (float evaluation; every 4th cos float +
+/// refinement): 3.4e-3 for eta 1.52 (Schlick 3.45e-2), 3.6e-3 for 1.33 (Schlick 6.0e-2), 4.7e-3 for
+/// 2.0, 5.4e-3 for 1.2, 7.2e-3 for 2.5; at most 5.0e-3 for eta in [1.25, 2.05] (every 0.001 +
+/// refinement). Cost: 1 add + 5 multiply-adds (Schlick: 5 flops), no division or sqrt. Domain:
+/// cos_i clamped to [0, 1]; any finite constants; result in [0, 1] (0 where huge constants overflow
+/// to NaN).
 RK_INLINE float rk_fresnel_dielectric_poly(float cos_i, vec4 p0, vec2 p1)
 {
     float c = rk_saturate(cos_i);
@@ -228,14 +233,16 @@ RK_INLINE float rk_fresnel_dielectric_poly(float cos_i, vec4 p0, vec2 p1)
 /// Standard closed form with a^2 + b^2 = |eta^2 - k^2 - sin^2 + 2 i eta k|. With k = 0 it equals
 /// rk_fresnel_dielectric for eta >= 1. Domain: cos_i clamped to [0, 1]; eta, k clamped to
 /// [0, 4096]. Max error vs the float64 complex-amplitude form (tests/reference/fresnel_ref.hpp;
-/// test_fresnel ConductorMatchesFloat64): 2.2e-7 absolute for gold, 2.1e-7 silver, 2.2e-7 copper,
-/// 2.0e-7 aluminium (their RGB n, k); over the grid n in [0.1, 3], k in [0, 5], cos in [0, 1]:
-/// 2.7e-7 (mean 3.4e-8). a = Re sqrt(z), z = eta^2 - k^2 - sin^2 + 2 i eta k, is computed without
-/// the cancellation of (|z| + Re z) / 2 when Re z < 0 (that form was 3.3e-6 off at n = k = 0.1);
-/// for k = 0, n < 1 the error is measured against cos +- 1 ulp (R is infinitely steep at the
-/// critical angle, as for rk_fresnel_dielectric_sp); 2e-6 asserted vs rk_fresnel_dielectric over
-/// n in [1.2, 2.4], k = 0. Cost: 3 sqrt, 3 div, ~32 flops per channel; on the CPU ~13x Schlick
-/// (bench), so use rk_fresnel_dielectric when k = 0.
+/// test_fresnel ConductorMatchesFloat64): 2.7e-7 absolute for gold, 2.4e-7 silver, 2.7e-7 copper,
+/// 2.4e-7 aluminium (their RGB n, k; every 16th cos float + refinement); over n in [0.1, 3],
+/// k in [0, 5], cos in [0, 1], against the float64 range over cos +- 1 ulp (R is infinitely steep
+/// at the critical angle for k = 0, n < 1, as for rk_fresnel_dielectric_sp): 4.4e-6, reached for
+/// small k > 0 with n < 1 near the critical angle, where R is ill-conditioned (4e7 random +
+/// refinement; mean 3.4e-8). a = Re sqrt(z), z = eta^2 - k^2 - sin^2 + 2 i eta k, is computed
+/// without the cancellation of (|z| + Re z) / 2 when Re z < 0 (that form was 3.3e-6 off at
+/// n = k = 0.1); 2e-6 asserted vs rk_fresnel_dielectric over n in [1.2, 2.4], k = 0.
+/// Cost: 3 sqrt, 3 div, ~32 flops per channel; on the CPU ~13x Schlick (bench), so use
+/// rk_fresnel_dielectric when k = 0.
 RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
 {
     float c = rk_saturate(cos_i);
@@ -282,7 +289,8 @@ RK_INLINE float rk_critical_cos(float eta)
 /// (glass -> air, n = 1.52: 0.718023 rad = 41.1395°); pi/2 when eta >= 1 (no TIR).
 /// Evaluated as atan(eta, sqrt(1 - eta^2)): GLSL leaves asin's precision to the driver, and
 /// Mesa llvmpipe's asin is off by up to 3.9e-4 rad (tests/gpu parity found it), while atan agrees
-/// to 4e-6. Max error: 4e-6 rad on llvmpipe, 1 ulp on the CPU. Cost: 1 sqrt, 1 atan.
+/// to 4e-6. Max error: 4e-6 rad on llvmpipe, 2.6 ulp on the CPU (every 4th float + refinement).
+/// Cost: 1 sqrt, 1 atan.
 RK_INLINE float rk_critical_angle(float eta)
 {
     float e = rk_saturate(eta);
@@ -290,8 +298,8 @@ RK_INLINE float rk_critical_angle(float eta)
 }
 
 /// rk_brewster_angle: angle where Rp = 0, atan(eta) in radians (n = 1.52: 0.988898 rad =
-/// 56.6593°). Domain: eta clamped to [1/4096, 4096]. Max error: 0.81 ulp (8.8e-8 rad) vs float64
-/// atan over the whole domain on the CPU (test_fresnel HelpersMatchFloat64); GLSL leaves atan's
+/// 56.6593°). Domain: eta clamped to [1/4096, 4096]. Max error: 0.86 ulp (9.2e-8 rad) vs float64
+/// atan over the whole domain on the CPU (every 4th float + refinement); GLSL leaves atan's
 /// precision to the driver (llvmpipe: 4e-6, see rk_critical_angle). Cost: 1 atan.
 RK_INLINE float rk_brewster_angle(float eta)
 {
@@ -335,7 +343,7 @@ RK_INLINE float rk_fresnel_slab(float r)
 /// rk_fresnel_slab_sp: the pane reflectance with the series summed per polarisation,
 /// (slab(Rs) + slab(Rp)) / 2: the physically right order. The thesis's slab of the average
 /// overestimates by up to 0.0236 for n = 1.52 (60°-75°). Domain: Rs, Rp clamped to [0, 1].
-/// Max error vs float64: 8.6e-8 over [0, 1]^2 (test_fresnel HelpersMatchFloat64). Cost: 2 div, 6 flops.
+/// Max error vs float64: 9.0e-8 over [0, 1]^2 (6e7 random + refinement). Cost: 2 div, 6 flops.
 RK_INLINE float rk_fresnel_slab_sp(vec2 rsp)
 {
     return 0.5f * (rk_fresnel_slab(rsp.x) + rk_fresnel_slab(rsp.y));
@@ -355,8 +363,8 @@ RK_INLINE float rk_fresnel_glazing(float r, float panes)
 
 /// rk_fresnel_glazing_sp: N panes with the series summed per polarisation,
 /// (glazing(Rs, N) + glazing(Rp, N)) / 2. Domain: as rk_fresnel_glazing (Rs, Rp clamped to [0, 1],
-/// panes to [0, 1e6]). Max error vs float64: 1.1e-7 over [0, 1]^2 and N = 1..4 (test_fresnel
-/// HelpersMatchFloat64). Cost: 2 div, 12 flops.
+/// panes to [0, 1e6]). Max error vs float64: 1.2e-7 over [0, 1]^2 and N = 1..4 (3e7 random
+/// per N + refinement). Cost: 2 div, 12 flops.
 RK_INLINE float rk_fresnel_glazing_sp(vec2 rsp, float panes)
 {
     return 0.5f * (rk_fresnel_glazing(rsp.x, panes) + rk_fresnel_glazing(rsp.y, panes));

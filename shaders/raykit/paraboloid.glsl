@@ -80,8 +80,8 @@ RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 7.8886090
 /// component is below RK_FLT_MIN in magnitude (zero, or denormal, which GPUs flush to zero).
 /// Denormal components count as zero on every backend: beside a component near RK_FLT_MIN a
 /// denormal one would otherwise tilt the direction by up to 45 degrees, across the hemisphere
-/// that the raw sign test (rk_dual_paraboloid_hemi) chose. Max error: 3.5 ulp per component
-/// against float64 of that vector (3.4 measured by test_adversarial).
+/// that the raw sign test (rk_dual_paraboloid_hemi) chose. Max error: 3.8 ulp per component
+/// against float64 of that vector (4e7 random + refinement).
 /// Cost: 4 max/abs, 3 select, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
 {
@@ -101,9 +101,9 @@ RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
 /// hemi = -1; Heidrich/Brabec for +1. The hemisphere maps onto the unit disk; directions past the
 /// rim continue outside it (used by the atlas guard band). The exact antipode -d0 has no image and
 /// returns (0, 0); its neighbourhood returns large finite values (|st| <= 1e30).
-/// Max error vs float64 (unit dir in the hemisphere): 2.2e-7 (measured over 4e5 directions); the
-/// round trip dir -> st -> dir through rk_paraboloid_decode is within 2.5e-7, st -> dir -> st
-/// within 2e-7 (tests/test_paraboloid.cpp prints them; the issue asks for 1e-6).
+/// Max error vs float64 (unit dir in the hemisphere): 2.4e-7; the round trip dir -> st -> dir
+/// through rk_paraboloid_decode is within 2.7e-7, st -> dir -> st within 2.6e-7 (2e7 random +
+/// refinement each; tests/test_paraboloid.cpp prints them; the issue asks for 1e-6).
 /// Cost: rk_paraboloid_normalize + 1 add, 1 div (shared), 2 mul.
 RK_INLINE vec2 rk_paraboloid_encode(vec3 dir, float hemi)
 {
@@ -118,8 +118,9 @@ RK_INLINE vec2 rk_paraboloid_encode(vec3 dir, float hemi)
 /// hemi = -1). |st| <= 1 gives the hemisphere, (0, 0) gives d0, the unit circle the rim
 /// hemi z = 0; points outside the disk decode to the other hemisphere (the guard band's content).
 /// Domain: s, t clamped to [-RK_PARABOLOID_ST_MAX, RK_PARABOLOID_ST_MAX]. The result is unit
-/// length within 2 ulp. Max error vs float64: 1.4e-7 absolute per component (z near the rim is
-/// absolute-accurate only: 1 - s^2 - t^2 cancels there). Cost: 1 div, ~9 flops.
+/// length within 2 ulp. Max error vs float64: 1.8e-7 absolute per component, 1.5e-7 in the unit
+/// disk (4e7 random + refinement; z near the rim is absolute-accurate only: 1 - s^2 - t^2 cancels
+/// there). Cost: 1 div, ~9 flops.
 RK_INLINE vec3 rk_paraboloid_decode(vec2 st, float hemi)
 {
     float h = rk_paraboloid_hemi_sign(hemi);
@@ -165,8 +166,8 @@ RK_INLINE vec2 rk_paraboloid_encode_differential(vec3 v, vec3 dv, float hemi)
 /// rk_paraboloid_solid_angle_density: dω/dA = 4 / (1 + s^2 + t^2)^2, the solid angle per unit
 /// area of st (the Jacobian of the decode): 4 at the centre, 1 on the rim (the factor-4 sampling
 /// variation of thesis §5.2.5); its integral over the unit disk is 2π. Domain: any finite st
-/// (s^2 + t^2 is clamped to 1e18; the far outside tends to 0). Max error: 4 ulp. Cost: 1 div,
-/// 5 flops.
+/// (s^2 + t^2 is clamped to 1e18; the far outside tends to 0). Max error: 7.4 ulp (4e7 random +
+/// refinement). Cost: 1 div, 5 flops.
 RK_INLINE float rk_paraboloid_solid_angle_density(vec2 st)
 {
     float r2 = min(st.x * st.x + st.y * st.y, 1.0e18f);
@@ -185,7 +186,7 @@ RK_INLINE float rk_paraboloid_sweet_circle(vec2 st)
 /// rk_paraboloid_uv: texture coordinates 0.5 + 0.5 st of a single (square) paraboloid map, scaled
 /// about the centre by guard_scale (1 for the thesis's plain layout; see the atlas for the guard).
 /// Domain: st clamped to ±RK_PARABOLOID_ST_MAX, guard_scale to [RK_PARABOLOID_GUARD_MIN, 1].
-/// Max error: 1 ulp. Cost: 2 fma.
+/// Max error: 9.0e-8 absolute (0.75 ulp of 1; not in ulps of a result near 0). Cost: 2 fma.
 RK_INLINE vec2 rk_paraboloid_uv(vec2 st, float guard_scale)
 {
     float g = 0.5f * clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
@@ -202,7 +203,8 @@ RK_INLINE vec2 rk_paraboloid_uv(vec2 st, float guard_scale)
 /// R_y(θ) = [[cos θ, 0, sin θ], [0, 1, 0], [-sin θ, 0, cos θ]]. Only n.x, n.z are read (a tilted
 /// normal gives the angle of its horizontal projection); n.x = n.z = 0 (below RK_FLT_MIN) gives 0.
 /// Result in (-π, π]: N = +z gives +π whatever the sign of a zero n.x. Max error: that of the
-/// driver's atan (3.3e-6 rad on llvmpipe; 2.2e-7 against Eq. 3.11 in float64 on the CPU).
+/// driver's atan (3.3e-6 rad on llvmpipe; 2.7e-7 against Eq. 3.11 in float64 on the CPU, every 4th
+/// float phi in [-π, π] + refinement).
 /// Cost: 1 atan.
 RK_INLINE float rk_paraboloid_frame_angle(vec3 n)
 {
@@ -299,8 +301,9 @@ RK_INLINE float rk_dual_paraboloid_hemi(vec3 dir) { return rk_paraboloid_hemi_si
 /// left, +z half; else the right one), whatever the sign of dir.z: a direction just across the seam
 /// lands in that half's guard band (|st| slightly above 1). The seam cross-fade reads both halves
 /// with it; rk_dual_paraboloid_uv is it with hemi = rk_dual_paraboloid_hemi(dir).
-/// Max error: 1e-7 in uv within the half's guard band; deeper into the other hemisphere |st| grows
-/// as 1 / (1 - |z|) and the rounding with it (relative error ~1e-5 of st near the antipode).
+/// Max error: 2.5e-7 in uv within the half's guard band for g >= 0.5 (2e7 random + refinement);
+/// deeper into the other hemisphere |st| grows as 1 / (1 - |z|) and the rounding with it (relative
+/// error ~1e-5 of st near the antipode).
 /// Cost: rk_paraboloid_encode + 4 flops.
 RK_INLINE vec2 rk_dual_paraboloid_uv_half(vec3 dir, float guard_scale, float hemi)
 {
@@ -314,7 +317,8 @@ RK_INLINE vec2 rk_dual_paraboloid_uv_half(vec3 dir, float guard_scale, float hem
 /// v = 0.5 + 0.5 g t, with g from rk_dual_paraboloid_guard_scale. |st| <= 1 always (the chosen
 /// hemisphere contains dir), so u stays in [0.25 (1 - g), 0.25 (1 + g)] (+ 0.5) and the filter taps
 /// never cross into the other half (tests/test_paraboloid.cpp checks every tap up to the LOD, on
-/// and beside the seam). Max error: 1e-7 in uv. Cost: rk_paraboloid_encode + 4 flops.
+/// and beside the seam). Max error: 1.6e-7 in uv (2e7 random + refinement).
+/// Cost: rk_paraboloid_encode + 4 flops.
 RK_INLINE vec2 rk_dual_paraboloid_uv(vec3 dir, float guard_scale)
 {
     return rk_dual_paraboloid_uv_half(dir, guard_scale, rk_dual_paraboloid_hemi(dir));
@@ -346,10 +350,10 @@ RK_INLINE float rk_dual_paraboloid_seam_weight(vec3 dir, float band)
 /// [RK_PARABOLOID_GUARD_MIN, 1]. Edge cases: dir = 0 (or all-denormal) returns (0, 0); on the seam
 /// (z = ±0) the hemisphere is +z, as for rk_dual_paraboloid_uv; d_dir parallel to dir returns ~0.
 /// |result| <= 0.5 g |d_dir| / |dir| (the projection scales angles by (1 + |st|^2) / 2 <= 1).
-/// Max error vs the float64 complex-step derivative of the documented atlas uv: 4.4e-7 of that
-/// bound, 3.5e-5 relative to |result| where d_dir is nearly parallel to dir and the result is
-/// small (random directions, scales 2^-20..2^20; tests/test_paraboloid.cpp
-/// UvDifferentialAgainstComplexStep asserts 1e-6 and 1e-4); llvmpipe within 6e-7 of the CPU.
+/// Max error vs the float64 complex-step derivative of the documented atlas uv: 7.5e-7 of that
+/// bound (1e7 random directions, scales 2^-20..2^20, + refinement); relative to |result| it is
+/// unbounded as d_dir turns parallel to dir (the result goes to 0). llvmpipe: within 6e-7 of
+/// the CPU.
 /// Cost: rk_paraboloid_encode_differential (3 div, 1 sqrt, ~25 flops) + 4 mul, 1 clamp.
 RK_INLINE vec2 rk_dual_paraboloid_uv_differential(vec3 dir, vec3 d_dir, float guard_scale)
 {
@@ -363,7 +367,8 @@ RK_INLINE vec2 rk_dual_paraboloid_uv_differential(vec3 dir, vec3 d_dir, float gu
 /// points of the guard band (|st| > 1) return the continuation directions of the other
 /// hemisphere, which is what a baker must store there. Give texel centres to bake a texel.
 /// Domain: uv clamped to [0, 1]^2, g to [RK_PARABOLOID_GUARD_MIN, 1].
-/// Max error: the uv -> dir -> uv round trip with rk_dual_paraboloid_uv is within 4.3e-7.
+/// Max error: the uv -> dir -> uv round trip with rk_dual_paraboloid_uv is within 4.3e-7 inside
+/// the disks (a uv on the rim of the right half comes back in the left half, 0.5 away).
 /// Cost: 1 div + rk_paraboloid_decode.
 RK_INLINE vec3 rk_dual_paraboloid_dir(vec2 uv, float guard_scale)
 {
@@ -383,7 +388,7 @@ RK_INLINE vec3 rk_dual_paraboloid_dir(vec2 uv, float guard_scale)
 /// that grows with the angle of incidence: lod_at_grazing * (1 - cos_i). The thesis gives no
 /// function; linear in (1 - cos) is 0 at normal incidence, lod_at_grazing at grazing incidence and
 /// grows fastest where the ghost images of the pane's internal reflections separate most.
-/// cos_i clamped to [0, 1], lod_at_grazing to [0, 16]. Exact (1 rounding). Cost: 2 flops.
+/// cos_i clamped to [0, 1], lod_at_grazing to [0, 16]. 2 roundings (1.5 ulp). Cost: 2 flops.
 RK_INLINE float rk_paraboloid_lod_from_incidence(float cos_i, float lod_at_grazing)
 {
     return clamp(lod_at_grazing, 0.0f, 16.0f) * (1.0f - rk_saturate(cos_i));
@@ -394,8 +399,8 @@ RK_INLINE float rk_paraboloid_lod_from_incidence(float cos_i, float lod_at_grazi
 /// unit of st spans 2 / (1 + s^2 + t^2) radians, so the texel angle is
 /// 4 / ((1 + s^2 + t^2) g half_size): largest at the centre, half of it on the rim. For a single
 /// square map of n texels pass half_size = n. Domain: st as rk_paraboloid_solid_angle_density,
-/// half_size clamped to [1, 2^24], guard_scale to [RK_PARABOLOID_GUARD_MIN, 1]. Max error: 3 ulp.
-/// Cost: 1 div, 5 flops.
+/// half_size clamped to [1, 2^24], guard_scale to [RK_PARABOLOID_GUARD_MIN, 1]. Max error: 4.2 ulp
+/// (2e7 random + refinement). Cost: 1 div, 5 flops.
 RK_INLINE float rk_paraboloid_texel_angle(vec2 st, float half_size, float guard_scale)
 {
     float r2 = min(st.x * st.x + st.y * st.y, 1.0e18f);
@@ -433,7 +438,7 @@ RK_INLINE float rk_paraboloid_lod_for_cone(vec2 st, float cone_angle, float half
 /// rk_paraboloid_depth_encode: linear-distance depth (dist - z_near) / (z_far - z_near) in [0, 1]
 /// (Brabec: the distance to the centre, not a projective z). Domain: all three clamped to
 /// [0, RK_PARABOLOID_POS_MAX]; z_far - z_near floored at 1e-18; the result clamped to
-/// [-1e6, 1e6]. Max error: 2 ulp. Cost: 1 div, 2 flops.
+/// [-1e6, 1e6]. Max error: 2.5 ulp (2e7 random + refinement). Cost: 1 div, 2 flops.
 RK_INLINE float rk_paraboloid_depth_encode(float dist, float z_near, float z_far)
 {
     float d = clamp(dist, 0.0f, RK_PARABOLOID_POS_MAX);
@@ -447,9 +452,9 @@ RK_INLINE float rk_paraboloid_depth_encode(float dist, float z_near, float z_far
 /// [0, RK_PARABOLOID_POS_MAX]. Edge cases: depth 0 gives z_near, 1 z_far, outside [0, 1] the
 /// linear continuation; it inverts rk_paraboloid_depth_encode only for z_far > z_near (encode
 /// floors the range at 1e-18, decode does not reorder it).
-/// Max error vs float64: 1.9e-7 of z_far (depth in [-0.5, 1.5], z_near in [0.01, 1], z_far up to
-/// 1e4; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64 asserts 2e-7); the same bits
-/// on llvmpipe (GPU parity). Cost: 1 sub, 1 mul, 1 add (or 1 fma), 3 clamps.
+/// Max error vs float64: 2.0e-7 of z_far (depth in [-0.5, 1.5], z_near in [0.01, 1], z_far up to
+/// 1e4; 2e7 random + refinement; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64); the
+/// same bits on llvmpipe (GPU parity). Cost: 1 sub, 1 mul, 1 add (or 1 fma), 3 clamps.
 RK_INLINE float rk_paraboloid_depth_decode(float depth, float z_near, float z_far)
 {
     float n = clamp(z_near, 0.0f, RK_PARABOLOID_POS_MAX);
@@ -469,8 +474,8 @@ RK_INLINE float rk_paraboloid_depth_decode(float depth, float z_near, float z_fa
 /// culled by rk_paraboloid_clip_distance); the exact antipode of d0 gives xy = (0, 0); distances
 /// beyond z_far give z > 1 and below z_near z < -1 (clipped by the depth range).
 /// Max error vs float64 g (x, y) / (|p| + hemi z) and 2 (|p| - z_near) / (z_far - z_near) - 1:
-/// 1.9e-7 in xy, 3.2e-7 of max(1, |z|) in z (|p| in 1e-3..1e4 in the half's hemisphere, z_far up
-/// to 1e4; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64 asserts 3e-7 and 4e-7);
+/// 2.6e-7 in xy, 4.9e-7 of max(1, |z|) in z (|p| in 1e-3..1e4 in the half's hemisphere, z_far up
+/// to 1e4; 2e7 random + refinement; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64);
 /// llvmpipe within 48 ulp of the CPU (GPU parity).
 /// Cost: 1 sqrt, 1 rsqrt, 3 div, ~30 flops, 6 clamps.
 RK_INLINE vec4 rk_paraboloid_project(vec3 p, float z_near, float z_far, float hemi, float guard_scale)
@@ -491,7 +496,8 @@ RK_INLINE vec4 rk_paraboloid_project(vec3 p, float z_near, float z_far, float he
 /// band): hemi p.z - z_min |p| with z_min = (g^2 - 1) / (g^2 + 1) <= 0, the cone of the edge
 /// (the plane hemi z = 0 when g = 1, Brabec's hemisphere cull). The rasteriser interpolates it
 /// linearly, so for large triangles the clip edge is approximate (the tessellation caveat).
-/// p clamped to ±RK_PARABOLOID_POS_MAX. Max error: 3 ulp of |p|. Cost: 1 sqrt, 1 div, 4 flops.
+/// p clamped to ±RK_PARABOLOID_POS_MAX. Max error: 3.7 ulp of |p| (2e7 random + refinement).
+/// Cost: 1 sqrt, 1 div, 4 flops.
 RK_INLINE float rk_paraboloid_clip_distance(vec3 p, float hemi, float guard_scale)
 {
     float h = rk_paraboloid_hemi_sign(hemi);

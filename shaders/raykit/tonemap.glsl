@@ -58,7 +58,7 @@ RK_OPTION_CHECK(rk_option_agx_look, RK_AGX_LOOK);
 /// rk_reinhard_scale: the scaling operator L_s = (key / L_avg) L (Eq. 3.15, with the log-average
 /// L_avg the thesis's text garbles). key is the target middle grey (0.18 typical). lum and key
 /// are sanitised (rk_hdr_sanitize), L_avg is clamped to [1e-20, RK_HDR_MAX] (NaN -> 1e-20), and the
-/// result to [0, RK_HDR_MAX]: finite for every input. Exact (2 roundings) below the clamp.
+/// result to [0, RK_HDR_MAX]: finite for every input. 2 roundings (1.5 ulp) below the clamp.
 /// Cost: 1 div, 1 mul, 2 compares.
 RK_INLINE float rk_reinhard_scale(float lum, float key, float log_average)
 {
@@ -77,7 +77,8 @@ RK_INLINE float rk_reinhard(float x)
 /// rk_reinhard_extended: L (1 + L / W^2) / (1 + L) (Eq. 3.17): L = W maps exactly to 1; values
 /// above W (which the formula maps above 1, "burn-out") are clamped to 1. white is clamped to
 /// [1e-9, RK_HDR_MAX]; a NaN white is RK_HDR_MAX (no white point: the simple operator); white >=
-/// 1e9 is the simple operator to float precision. Max error: 4 ulp. Cost: 1 div, 4 flops.
+/// 1e9 is the simple operator to float precision. Max error: 4.2 ulp (4e7 random (x, W) +
+/// refinement). Cost: 1 div, 4 flops.
 RK_INLINE float rk_reinhard_extended(float x, float white)
 {
     float v = rk_hdr_sanitize(x);
@@ -94,7 +95,7 @@ RK_INLINE float rk_reinhard_extended(float x, float white)
 /// rk_tonemap_reinhard: Reinhard applied to luminance with the colour ratio kept,
 /// rgb * L_d / L (the practice the thesis leaves implicit), clamped to [0, 1] per channel.
 /// Pre-scale rgb by key / L_avg (rk_reinhard_scale's factor). white = RK_HDR_MAX gives Eq. 3.16.
-/// Max error vs float64: 1.9e-7. Cost: 1 dot, 2 div, ~8 flops.
+/// Max error vs float64: 3.8e-7 (6e7 random colours + refinement). Cost: 1 dot, 2 div, ~8 flops.
 RK_INLINE vec3 rk_tonemap_reinhard(vec3 rgb, float white)
 {
     vec3 c = rk_hdr_sanitize(rgb);
@@ -110,12 +111,13 @@ RK_INLINE vec3 rk_tonemap_reinhard(vec3 rgb, float white)
 /// 100-nit ODT with its 2.4 gamma removed, i.e. display-linear sRGB/Rec.709),
 /// x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped to [0, 1]. Per channel (no hue
 /// preservation). Narkowicz suggests pre-multiplying the input by 0.6 to match ACES exposure; this
-/// function applies no scale (do it in the exposure). Max error vs float64 of the formula: 2.3e-7.
+/// function applies no scale (do it in the exposure). Max error vs float64 of the formula: 3.0e-7
+/// (every 4th float in [0, 1e9] + refinement).
 /// Max error vs ACES itself (the float64 ACES 1.0 RRT + sRGB 100-nit ODT of
 /// tests/reference/tonemap_ref.hpp; display-linear, peak channel 1e-3..1e2; test_tonemap
-/// AcesFitsAgainstAcesReference): with the input x 0.6, 0.0635 on grey (at 0.44), 0.356 on mild
+/// AcesFitsAgainstAcesReference): with the input x 0.6, 0.0635 on grey (at 0.44), 0.37 on mild
 /// colours; with x 0.5, the best scale on grey, 0.0138 (at 3.6: the fit error his post states) and
-/// 0.411 on mild colours; unscaled, 0.244 on grey. Bright saturated colours stay saturated where
+/// 0.42 on mild colours; unscaled, 0.25 on grey. Bright saturated colours stay saturated where
 /// ACES goes to white: error up to 1.0 (e.g. pure green 66). Cost: 2 mad + 1 div per channel.
 RK_INLINE vec3 rk_aces_narkowicz(vec3 rgb)
 {
@@ -130,8 +132,8 @@ RK_INLINE vec3 rk_aces_narkowicz(vec3 rgb)
 /// Domain: v >= 0 (negative v clamped to 0, capped at 1e9). Range: -3.8e-4 at 0 (negative below
 /// v = 0.00325; rk_aces_hill clamps after its output matrix) rising to 1 / 0.983729 = 1.0165401,
 /// which float rounding overshoots by up to 2 ulp (largest output 1.0165403).
-/// Max error vs float64: 3.1e-7 (2.6 ulp of the asymptote) over {0} and [1e-5, 1e4] (test_tonemap
-/// CurvesAndHelpersMatchFloat64). Cost: 2 mad + 1 div per channel.
+/// Max error vs float64: 3.7e-7 (3.1 ulp of the asymptote) over {0} and the floats in [1e-5, 1e4]
+/// (every 4th + refinement; also over [0, 1e9]). Cost: 2 mad + 1 div per channel.
 RK_INLINE vec3 rk_aces_hill_curve(vec3 v)
 {
     vec3 x = min(max(v, vec3(0.0f)), vec3(1e9f));
@@ -143,11 +145,11 @@ RK_INLINE vec3 rk_aces_hill_curve(vec3 v)
 /// transposed into GLSL's column-major mat3 constructor (they equal the products derived from the
 /// ACES chromaticities, Bradford CAT and RRT/ODT_SAT to 4.6e-6, i.e. to their 5 printed decimals).
 /// No exposure boost (some ports divide the input by 0.6). Max error vs float64 of the same
-/// formula: 4.1e-7. Max error vs ACES itself (the float64 ACES 1.0 RRT + sRGB 100-nit ODT of
-/// tests/reference/tonemap_ref.hpp; display-linear, peak channel 1e-3..1e2; test_tonemap
-/// AcesFitsAgainstAcesReference): 0.0101 on grey (at 2.56; 0.0061 after sRGB encoding), 0.0647 on
-/// mild colours, 0.080 on saturated ones (pure red 0.87: the fit has no glow, red modifier or
-/// dim-surround step). Cost: 2 mat3*vec3, 6 mad, 3 div.
+/// formula: 5.6e-7 (6e7 random colours + refinement). Max error vs ACES itself (the float64 ACES
+/// 1.0 RRT + sRGB 100-nit ODT of tests/reference/tonemap_ref.hpp; display-linear, peak channel
+/// 1e-3..1e2; test_tonemap AcesFitsAgainstAcesReference): 0.0101 on grey (at 2.56; 0.0061 after
+/// sRGB encoding), 0.067 on mild colours, 0.081 on saturated ones (pure red 0.88: the fit has no
+/// glow, red modifier or dim-surround step). Cost: 2 mat3*vec3, 6 mad, 3 div.
 RK_INLINE vec3 rk_aces_hill(vec3 rgb)
 {
     mat3 aces_in = mat3(vec3(0.59719f, 0.07600f, 0.02840f), vec3(0.35458f, 0.90834f, 0.13383f),
@@ -174,8 +176,8 @@ RK_INLINE vec3 rk_agx_contrast(vec3 x)
 /// rk_agx_look: ASC CDL look applied in AgX's encoded space, then saturation about BT.709 luma:
 /// look 0 default (identity), 1 golden (slope 1, 0.9, 0.5; power 0.8; saturation 1.3),
 /// 2 punchy (power 1.35; saturation 1.4). Domain: x in [0, 1]. Max error vs float64 of the CDL
-/// formula over [0, 1]^3: 0 (look 0, returns x), 1.7e-7 (golden), 1.8e-7 (punchy) on the CPU
-/// (test_tonemap CurvesAndHelpersMatchFloat64; pow is driver-defined on a GPU).
+/// formula over [0, 1]^3: 0 (look 0, returns x), 2.1e-7 (golden), 2.0e-7 (punchy) on the CPU
+/// (2e7 random inputs + refinement; pow is driver-defined on a GPU).
 /// Cost: 0 (look 0) or 3 pow + 6 flops.
 RK_INLINE vec3 rk_agx_look(vec3 x, int look)
 {
@@ -201,9 +203,10 @@ RK_INLINE vec3 rk_agx_look(vec3 x, int look)
 /// [-12.47393, 4.026069] EV around 0.18, the contrast polynomial, an optional look (RK_AGX_LOOK
 /// when called through rk_tonemap), the outset (inverse) matrix, and display linearisation
 /// x^2.2. Values are clamped to [0, 1] before the power (the polynomial is -0.00232 at 0 and the
-/// outset matrix can go negative). Max error vs float64 of the same formula: 1.5e-5 (default
-/// look), 2.8e-5 (punchy), from float cancellation between the polynomial's alternating
-/// coefficients; the looks lift black to ~2e-7. Cost: 2 mat3*vec3, 3 log2, 3 pow, 18 mad.
+/// outset matrix can go negative). Max error vs float64 of the same formula: 1.9e-5 (default
+/// look), 1.5e-5 (golden), 3.6e-5 (punchy) (2e7 random colours + grey floats + refinement), from
+/// float cancellation between the polynomial's alternating coefficients; the looks lift black to
+/// ~2e-7. Cost: 2 mat3*vec3, 3 log2, 3 pow, 18 mad.
 RK_INLINE vec3 rk_agx(vec3 rgb, int look)
 {
     mat3 inset = mat3(vec3(0.842479062253094f, 0.0423282422610123f, 0.0423756549057051f),
@@ -236,7 +239,8 @@ RK_INLINE vec3 rk_agx(vec3 rgb, int look)
 /// toward vec3(1)) by g = 1 - 1 / (0.15 (p - newPeak) + 1). Output in [0, 1]: below 1 in exact
 /// arithmetic, but float32 rounds the compressed peak up to exactly 1 for peaks above about
 /// 1.9e6 (1 - 0.0576 / (p - 0.52) is then within half an ulp of 1). Hue-preserving.
-/// Max error vs float64 of the spec formula: 1.4e-7. Cost: ~20 flops, 2 div.
+/// Max error vs float64 of the spec formula: 2.2e-7 (6e7 random colours + refinement).
+/// Cost: ~20 flops, 2 div.
 RK_INLINE vec3 rk_pbr_neutral(vec3 rgb)
 {
     vec3 c = rk_hdr_sanitize(rgb);
@@ -263,7 +267,7 @@ RK_INLINE vec3 rk_pbr_neutral(vec3 rgb)
 /// and CPU agree to 1e-3 relative there, 2e-6 absolute below the compression start.
 /// Round trip error: 2e-6 absolute below the compression start; above it the forward map mixes
 /// toward grey (g -> 1), so channels much smaller than the peak come back with an error of up to
-/// 4.6e-4 of the peak (mean 3e-5) for peaks up to 100 — float cancellation, not the formula.
+/// 4.9e-4 of the peak (mean 3.2e-5) for peaks up to 100 — float cancellation, not the formula.
 /// Cost: 1 sqrt, 3 div.
 RK_INLINE vec3 rk_pbr_neutral_inverse(vec3 display)
 {
@@ -287,8 +291,8 @@ RK_INLINE vec3 rk_pbr_neutral_inverse(vec3 display)
 
 /// rk_hable_curve: Hable's Uncharted 2 curve ((x (A x + C B) + D E) / (x (A x + B) + D F)) - E / F
 /// with A 0.15, B 0.50, C 0.10, D 0.20, E 0.02, F 0.30. Domain: x >= 0 (negative x clamped to 0,
-/// capped at 1e9). Range: 0 at 0 rising to 1 - E / F = 0.9333. Max error vs float64: 1.9e-7 over
-/// {0} and [1e-5, 1e4] (test_tonemap CurvesAndHelpersMatchFloat64). Cost: 4 mad, 1 div.
+/// capped at 1e9). Range: 0 at 0 rising to 1 - E / F = 0.9333. Max error vs float64: 2.5e-7 over
+/// {0} and the floats in [1e-5, 1e4] (every 4th + refinement). Cost: 4 mad, 1 div.
 RK_INLINE vec3 rk_hable_curve(vec3 x)
 {
     vec3 v = min(max(x, vec3(0.0f)), vec3(1e9f));
@@ -297,7 +301,8 @@ RK_INLINE vec3 rk_hable_curve(vec3 x)
 
 /// rk_hable: Uncharted 2 filmic, curve(x) / curve(W) with linear white W = 11.2, clamped to [0, 1].
 /// Hable's demo multiplies the input by an exposure bias of 2; do that in the exposure.
-/// Max error vs float64: 2.2e-7. Cost: 8 mad, 2 div (curve(W) folds to a constant).
+/// Max error vs float64: 2.9e-7 (every 4th float in [0, 1e9] + refinement).
+/// Cost: 8 mad, 2 div (curve(W) folds to a constant).
 RK_INLINE vec3 rk_hable(vec3 rgb)
 {
     vec3 white = rk_hable_curve(vec3(11.2f));
@@ -308,9 +313,9 @@ RK_INLINE vec3 rk_hable(vec3 rgb)
 /// mid_in -> mid_out and hdr_max -> 1, for contrast a and shoulder d. Compute once (CPU or
 /// constant-folded). Domain (clamped, so any input gives finite b, c): a in [0.1, 4],
 /// d in [0.1, 1], mid_in in [1e-4, 1], hdr_max in [2 mid_in, 1e4], mid_out in [1e-4, 0.9999].
-/// Max error vs float64 (relative): 3.4e-7 on b, 5.2e-7 on c over a in [1, 2], d in [0.9, 1] with
-/// hdr_max 8, and over hdr_max in [1, 1e3] with a 1.6, d 0.977 (mid 0.18 -> 0.267; CPU pow,
-/// test_tonemap CurvesAndHelpersMatchFloat64). Cost: 4 pow.
+/// Max error vs float64 (relative): 4.5e-7 on b, 7.3e-7 on c over a in [1, 2], d in [0.9, 1] with
+/// hdr_max 8, and over hdr_max in [1, 1e3] with a 1.6, d 0.977 (mid 0.18 -> 0.267; CPU pow;
+/// 2e7 random (a, d) + every 4th float hdr_max + refinement). Cost: 4 pow.
 RK_INLINE vec2 rk_lottes_params(float a, float d, float hdr_max, float mid_in, float mid_out)
 {
     float ac = clamp(a, 0.1f, 4.0f);
@@ -330,8 +335,9 @@ RK_INLINE vec2 rk_lottes_params(float a, float d, float hdr_max, float mid_in, f
 }
 
 /// rk_lottes: Lottes 2016 per channel with contrast 1.6, shoulder 0.977, hdrMax 8, mid grey
-/// 0.18 -> 0.267, clamped to [0, 1]. Max error vs float64: 2.1e-7 on the CPU (pow on the GPU is
-/// driver-defined). Cost: 2 pow + 2 flops per channel (params fold).
+/// 0.18 -> 0.267, clamped to [0, 1]. Max error vs float64: 2.5e-7 on the CPU (every 16th float in
+/// [0, 1e9] + refinement; pow on the GPU is driver-defined). Cost: 2 pow + 2 flops per channel
+/// (params fold).
 RK_INLINE vec3 rk_lottes(vec3 rgb)
 {
     float a = 1.6f;
@@ -351,9 +357,10 @@ RK_INLINE vec3 rk_lottes(vec3 rgb)
 /// the formula needs m > 0 (x / m), a > 0, m < P and l < 1 (it divides by P - S1 = (P - m)(1 - l)),
 /// and the output is finite for P in [1e-3, 1e3], m in [1e-4 P, 0.999 P], l in [0, 0.999],
 /// a in [1e-3, 1e3], c in [0.01, 100], b in [-P, P] (test_adversarial; nearer those limits
-/// P - S1 rounds to 0 or an intermediate overflows). Max error vs float64: 5.7e-8 with the
-/// defaults, 9.7e-8 with P 1.5, a 1.2, m 0.3, l 0.3, c 1.5, b 0.01, over x in [1e-5, 1e4] on the CPU
-/// (test_tonemap CurvesAndHelpersMatchFloat64). Cost: 1 pow, 1 exp, 1 smoothstep, ~15 flops per channel.
+/// P - S1 rounds to 0 or an intermediate overflows). Max error vs float64: 6.8e-8 with the
+/// defaults, 1.2e-7 with P 1.5, a 1.2, m 0.3, l 0.3, c 1.5, b 0.01, over the floats x in
+/// [1e-5, 1e4] on the CPU (every 4th + refinement). Cost: 1 pow, 1 exp, 1 smoothstep, ~15 flops
+/// per channel.
 RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, float c, float b)
 {
     float l0 = ((P - m) * l) / a;
@@ -371,7 +378,8 @@ RK_INLINE vec3 rk_uchimura_curve(vec3 x, float P, float a, float m, float l, flo
 }
 
 /// rk_uchimura: the GT curve with its published defaults P 1, a 1, m 0.22, l 0.4, c 1.33, b 0,
-/// clamped to [0, 1]. Max error vs float64: 6.1e-8. Cost: see rk_uchimura_curve.
+/// clamped to [0, 1]. Max error vs float64: 6.8e-8 (every 4th float in [0, 1e9] + refinement).
+/// Cost: see rk_uchimura_curve.
 RK_INLINE vec3 rk_uchimura(vec3 rgb)
 {
     vec3 x = min(rk_hdr_sanitize(rgb), vec3(1e9f));

@@ -25,9 +25,9 @@
 //         (default 2: one pane, multiple reflections summed per polarisation; 3: `panes` panes).
 //       1 fast: rk_fresnel_dielectric_fast (no square root) then rk_fresnel_glazing over `panes`
 //         panes (the slab applied to the polarisation average, the thesis's order). Max abs error
-//         against rk_window_glass_reflectance_exact (per-polarisation glazing), n = 1.52: 0.022
+//         against rk_window_glass_reflectance_exact (per-polarisation glazing), n = 1.52: 0.023
 //         for one pane (the thesis's order alone accounts for 0.0236, partly cancelled by the fast
-//         Fresnel's own error), 0.062 for two panes (tests/test_envmap_correction.cpp prints them).
+//         Fresnel's own error), 0.063 for two panes (every 4th cos float + refinement).
 //
 // @rk-es 310
 // @rk-es300
@@ -58,9 +58,10 @@ RK_OPTION_CHECK(rk_option_window_glass_fresnel, RK_WINDOW_GLASS_FRESNEL);
 /// reflects the same from both sides). normal and to_eye (from the surface towards the eye) are
 /// unit vectors; their components are clamped to [-1, 1] so no input overflows. Result in [0, 1]
 /// (non-unit inputs are not normalised: the result is then no cosine, only capped at 1).
-/// Max error vs float64 |N·V| of the same float unit vectors: 1.1e-7 absolute (relative error
-/// grows towards grazing, where the dot cancels; tests/test_envmap_correction.cpp
-/// WindowGlass.AgainstFloat64 asserts 2e-7). Cost: 1 dot, 1 abs, 1 min, 2 clamps.
+/// Max error vs float64 |N·V| of the same float unit vectors: 1.2e-7 absolute (relative error
+/// grows towards grazing, where the dot cancels; 2e7 random + refinement;
+/// tests/test_envmap_correction.cpp WindowGlass.AgainstFloat64 asserts 2e-7).
+/// Cost: 1 dot, 1 abs, 1 min, 2 clamps.
 RK_INLINE float rk_window_glass_cos(vec3 normal, vec3 to_eye)
 {
     vec3 n = clamp(normal, vec3(-1.0f), vec3(1.0f));
@@ -72,7 +73,10 @@ RK_INLINE float rk_window_glass_cos(vec3 normal, vec3 to_eye)
 /// panes (two surfaces each), incoherent multiple reflections summed per polarisation:
 /// rk_fresnel_glazing_sp(rk_fresnel_dielectric_sp(cos_i, eta), panes). One pane, n = 1.52:
 /// 0.081682 at normal incidence, 0.15653 at 60°, 0.75435 at 85°. Domain as in
-/// fresnel.glsl (cos_i in [0, 1], eta clamped, panes in [0, 1e6]). Max error: 1e-6.
+/// fresnel.glsl (cos_i in [0, 1], eta clamped, panes in [0, 1e6]). Max error vs float64: 3.8e-7
+/// for n = 1.52 and 1 to 4 panes (every 16th cos float + refinement); 2.5e-5 over eta in
+/// (1, 4096], panes in [0.01, 1e6] (at huge eta with fractional panes); up to 1.1e-3 for eta < 1
+/// near the critical angle, where R is ill-conditioned (2e7 random + refinement each).
 /// Cost: 1 sqrt, 4 div, ~30 flops.
 RK_INLINE float rk_window_glass_reflectance_exact(float cos_i, float eta, float panes)
 {
@@ -82,8 +86,8 @@ RK_INLINE float rk_window_glass_reflectance_exact(float cos_i, float eta, float 
 /// rk_window_glass_reflectance_fast: the cheap pane reflectance: the square-root-free
 /// rk_fresnel_dielectric_fast (params from rk_fresnel_fast_params(eta), a per-material constant),
 /// then rk_fresnel_glazing over `panes` panes applied to the polarisation average (the thesis's
-/// order, Eq. 3.8). Max abs error against rk_window_glass_reflectance_exact, n = 1.52: 0.022 for
-/// one pane (worst near 75°), 0.062 for two (tests/test_envmap_correction.cpp).
+/// order, Eq. 3.8). Max abs error against rk_window_glass_reflectance_exact, n = 1.52: 0.023 for
+/// one pane (worst near 75°), 0.063 for two (every 4th cos float + refinement).
 /// Cost: 2 div, ~20 flops, no sqrt.
 RK_INLINE float rk_window_glass_reflectance_fast(float cos_i, vec3 params, float panes)
 {
@@ -108,10 +112,10 @@ RK_CONFIGURED_BEGIN(RK_NS_WINDOW_GLASS)
 /// them, give between 0 and 1 on the CPU); normal incidence 0.0816820 for one pane of n = 1.52.
 /// Max error, default build (exact mode 0 with RK_FRESNEL_WINDOW_MODE 2: one pane, the series
 /// summed per polarisation; equal bit for bit to rk_fresnel_window), vs the float64
-/// complex-amplitude Fresnel with the slab 2R / (1 + R) per polarisation: 3.2e-7 absolute for
-/// n = 1.52, 2.9e-7 for n in [1.2, 2.4] over cos in [0, 1] (tests/test_envmap_correction.cpp
-/// WindowGlass.AgainstFloat64 asserts 1e-6). The fast mode is a model 0.022 (one pane) / 0.062
-/// (two) away from the exact pane (file header).
+/// complex-amplitude Fresnel with the slab 2R / (1 + R) per polarisation: 3.8e-7 absolute for
+/// n = 1.52 (every 4th cos float + refinement), 4.1e-7 for n in [1.2, 2.4] over cos in [0, 1] (2e7
+/// random + refinement; tests/test_envmap_correction.cpp WindowGlass.AgainstFloat64 asserts 1e-6).
+/// The fast mode is a model 0.023 (one pane) / 0.063 (two) away from the exact pane (file header).
 /// Cost: default 1 sqrt, 4 div, ~20 flops; fast 2 div, ~20 flops (+ 1 sqrt for the params).
 RK_INLINE float rk_window_glass_reflectance(float cos_i, float eta, float panes)
 {
@@ -127,8 +131,8 @@ RK_INLINE float rk_window_glass_reflectance(float cos_i, float eta, float panes)
 /// and NaN to 0, +Inf and above RK_HDR_MAX to RK_HDR_MAX), reflectance and tint clamped to [0, 1].
 /// With tint = 1 and equal inputs the output equals the input (energy conserving); reflectance 0
 /// gives tint * interior, 1 the reflection.
-/// Max error vs float64 of the same formula: 2.4 ulp per channel (1.9e-7 relative; radiances
-/// 1e-3..8e3, all terms >= 0 so no cancellation; tests/test_envmap_correction.cpp
+/// Max error vs float64 of the same formula: 3.0 ulp per channel (radiances 1e-3..8e3, all terms
+/// >= 0 so no cancellation; 2e7 random + refinement; tests/test_envmap_correction.cpp
 /// WindowGlass.AgainstFloat64 asserts < 4 ulp).
 /// Cost: 9 mul, 1 sub, 3 add, 2 clamps, 6 compare/select (sanitize).
 RK_INLINE vec3 rk_window_glass_combine(vec3 reflection, vec3 interior, float reflectance, vec3 tint)
@@ -144,10 +148,11 @@ RK_INLINE vec3 rk_window_glass_combine(vec3 reflection, vec3 interior, float ref
 /// glass. Domain and edge cases: those of rk_window_glass_cos (unit normal and to_eye; both sides
 /// of the pane shade alike), rk_window_glass_reflectance and rk_window_glass_combine.
 /// Max error, default build, vs float64 (|N·V|, the float64 pane of rk_window_glass_reflectance,
-/// the combine): 3.4e-7 of reflection + tint * interior per channel (n = 1.52, random unit N, V;
-/// tests/test_envmap_correction.cpp WindowGlass.AgainstFloat64 asserts 1e-6). Relative to the
-/// output the transmitted part is less accurate towards grazing, where 1 - R shrinks with N·V and
-/// the float N·V's rounding becomes a sizeable fraction of it (2.5e-4 of the output at N·V = 7e-5).
+/// the combine): 5.4e-7 of reflection + tint * interior per channel (n = 1.52, 2e7 random unit N,
+/// V + refinement; tests/test_envmap_correction.cpp WindowGlass.AgainstFloat64 asserts 1e-6).
+/// Relative to the output the transmitted part is less accurate towards grazing, where 1 - R
+/// shrinks with N·V and the float N·V's rounding becomes a sizeable fraction of it (2.5e-4 of the
+/// output at N·V = 7e-5).
 /// Cost: that of the reflectance + ~19 flops (default: 1 sqrt, 4 div, ~40 flops).
 RK_INLINE vec3 rk_window_glass_shade(vec3 normal, vec3 to_eye, vec3 reflection, vec3 interior, vec3 tint, float eta,
                                      float panes)
@@ -164,7 +169,9 @@ RK_CONFIGURED_END
 ///   R_pane = R + (1 - R)^2 tau^2 R / (1 - R^2 tau^2),   T_pane = (1 - R)^2 tau / (1 - R^2 tau^2).
 /// tau = 1 gives the slab 2R / (1 + R) and 1 - 2R / (1 + R). rsp and tau clamped to [0, 1]; the
 /// divisor is floored at RK_FLT_MIN (R = tau = 1 gives R_pane = 1, T_pane = 0). Use
-/// colour = R_pane reflection + T_pane interior. Max error: 4 ulp. Cost: 2 x (1 div, ~12 flops) x3.
+/// colour = R_pane reflection + T_pane interior. Max error: 3.1 ulp on R_pane; on T_pane
+/// ~1 / (1 - R^2 tau^2) ulp, from the cancellation in the divisor (290 ulp at R, tau ~ 0.999,
+/// 2.4e3 at 0.99996; 4e7 random + refinement). Cost: 2 x (1 div, ~12 flops) x3.
 RK_INLINE void rk_window_glass_slab_absorbing(vec2 rsp, vec3 tau, RK_OUT(vec3) reflectance, RK_OUT(vec3) transmittance)
 {
     vec3 t = clamp(tau, vec3(0.0f), vec3(1.0f));
