@@ -306,7 +306,7 @@ the run above, the picture may move by a few tenths of a plain frame between run
 - **Texture fetches dominate.** One trilinear `textureGrad` costs about 0.45-0.55 plain frames
   here (the plain material itself is two fetches). Measured on rk_min+furniture2: replacing both
   sprite `textureGrad`s with arithmetic saved 1.1 plain frames, replacing them with bilinear
-  `textureLod(..., 0)` fetches 0.75 (a one-off experiment, not one of the configurations above). So the texture array (`RK_IM_SHADING=1`, one fetch) is about 1.3
+  `textureLod(..., 0)` fetches 0.75 (a one-off experiment, not one of the configurations above). So the texture array (`RK_IM_SHADING=1`, one fetch) is about 1.5
   plain frames cheaper than the four textures (rk_min+array vs rk_min: three fetches fewer) and
   **rk_min+array is below the thesis port**, which samples its four textures unconditionally with
   implicit LOD. The atlas is close to the array; the cube per room a little dearer.
