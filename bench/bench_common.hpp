@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "raykit/common.hpp"
+#include "stats.hpp"
 #include "test_util.hpp"
 
 namespace rkbench {
@@ -292,15 +293,7 @@ inline std::map<std::string, Passes>& pass_registry()
     return m;
 }
 
-inline double median_of(std::vector<double> v)
-{
-    if (v.empty()) return 0.0;
-    const std::size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-    const double hi = v[mid];
-    if (v.size() % 2 == 1) return hi;
-    return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
+using rkbench_stats::median;
 
 /// Runs the own pass, the baseline's pass and both harnesses once each per iteration in rotating
 /// order (see above); sets the iteration's manual time to the own pass and the paired counters.
@@ -335,12 +328,12 @@ inline void run_paired(benchmark::State& st, const Passes& own, const Passes& ba
     }
     const double per = 1.0 / static_cast<double>(n);
     st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(n));
-    st.counters["time_per_call"] = median_of(t_own) * per;
-    st.counters["harness_per_call"] = median_of(t_h) * per;
-    st.counters["baseline_per_call"] = median_of(t_base) * per;
-    st.counters["baseline_harness_per_call"] = median_of(t_bh) * per;
-    st.counters["rel_cost"] = median_of(rel);
-    st.counters["rel_cost_gross"] = median_of(rel_gross);
+    st.counters["time_per_call"] = median(t_own) * per;
+    st.counters["harness_per_call"] = median(t_h) * per;
+    st.counters["baseline_per_call"] = median(t_base) * per;
+    st.counters["baseline_harness_per_call"] = median(t_bh) * per;
+    st.counters["rel_cost"] = median(rel);
+    st.counters["rel_cost_gross"] = median(rel_gross);
 }
 
 /// Registers BM_<suite>/<variant>/<params>: times `fn(input)` over `inputs`, paired with the suite's

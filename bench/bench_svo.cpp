@@ -160,14 +160,6 @@ bool build(const raykit::SvoMeshData& mesh, uint32_t attributes, int depth, int 
     return ok;
 }
 
-double median(std::vector<double> v)
-{
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /// The size and memory counters of a finished build (see the top of this file).
 void size_counters(benchmark::State& s, const Build& b, uint64_t est, uint64_t rss_rise)
 {

@@ -194,12 +194,14 @@ P = r.get("poses", R) or R
 S = max(R // P, 1)  # sweeps over the same camera poses
 def sweeps(vals):
     return [vals[i * P:(i + 1) * P] for i in range(S)] if S > 1 else [vals]
+def ratios(a, b):
+    # a[r] / b[r] per round: both configurations rendered the same camera pose in round r.
+    return [x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])]
 def paired(a, b):
-    # median over rounds of a[r] / b[r]: both configurations rendered camera pose r in round r.
-    return median([x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])])
+    return median(ratios(a, b))
 def paired3(a, b):
     # (median over all rounds, min and max of the per-sweep medians): the run-to-run spread.
-    rat = [x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])]
+    rat = ratios(a, b)
     per = [median(v) for v in sweeps(rat)]
     return median(rat), min(per), max(per)
 def fmt3(t, pct=False):
@@ -240,8 +242,7 @@ for m in ["thesis", "rk_min", "rk_full"]:
         for s_i in range(S):
             pts = [(math.log10(rows[0]["rooms_per_building"]), 1.0)]
             for c in rows[1:]:
-                rat = [x / max(y, 1e-9) for x, y in zip(cfg[c["name"]][ka], cfg[base][ka])]
-                pts.append((math.log10(c["rooms_per_building"]), median(sweeps(rat)[s_i])))
+                pts.append((math.log10(c["rooms_per_building"]), median(sweeps(ratios(c["name"], base))[s_i])))
             per_sweep.append(100.0 * slope(pts))
         allpts = [(math.log10(rows[0]["rooms_per_building"]), 1.0)] + [(math.log10(n), v) for n, v in rel]
         sl = 100.0 * slope(allpts)
@@ -265,7 +266,6 @@ if feat and "plain" in cfg:
     for c in feat:
         base = next((b for b in bases if c["material"].startswith(b)), None)
         if base is None or base not in cfg or c["name"] == base: continue
-        ka = tkey + "_per_round"
         # Paired by frame: (variant - base) / plain of the same round, median over rounds.
         dp = median([(v - b) / max(p, 1e-9) for v, b, p in zip(c[ka], cfg[base][ka], cfg["plain"][ka])])
         rows.append((c["name"], base, dp * plain, mats.get(c["material"], {}).get("features", ""), c[key]))

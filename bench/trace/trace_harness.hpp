@@ -53,6 +53,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../stats.hpp"
 #include "trace_scene.hpp"
 
 namespace rktrace {
@@ -144,13 +145,7 @@ inline double seconds_since(std::chrono::steady_clock::time_point t0)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-inline double median(std::vector<double> v)
-{
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using rkbench_stats::median;
 
 /// The 1-minute load average (Linux /proc/loadavg; -1 where unavailable): above the core count,
 /// other processes took time from the row (the 2-thread rows first).
