@@ -142,7 +142,7 @@ def load(path):
 
     rows = []
     for run in order:
-        if run in iterations and len(iterations[run]) > 1 or run in iterations and run not in medians:
+        if run in iterations and (len(iterations[run]) > 1 or run not in medians):
             runs = iterations[run]
             row = Row(run, runs[0])
             times = [t for t in (ns_per_call(r) for r in runs) if t is not None]
