@@ -135,6 +135,17 @@ struct SatTriangle {
         const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * size + (i128)std::max<int64_t>(A.aw, 0) * size;
         return !(A.thi < blo || A.tlo > bhi);
     }
+    /// Whether the box's projection on axis A lies inside the triangle's projection interval. For
+    /// the three axes e_i x unit_k of one k, all three inside means the box's shadow along k lies
+    /// inside the triangle's shadow (the strips between each edge and the opposite vertex meet in
+    /// the triangle): then the box overlaps the triangle iff it overlaps the triangle's plane.
+    static bool axis_inside(const Axis& A, const int64_t bmin[3], int64_t size)
+    {
+        const i128 base = (i128)A.au * bmin[A.ka] + (i128)A.aw * bmin[A.kb];
+        const i128 blo = base + (i128)std::min<int64_t>(A.au, 0) * size + (i128)std::min<int64_t>(A.aw, 0) * size;
+        const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * size + (i128)std::max<int64_t>(A.aw, 0) * size;
+        return A.tlo <= blo && bhi <= A.thi;
+    }
     /// Whether the triangle's plane passes through the box (touching counts).
     bool plane_ok(const int64_t bmin[3], int64_t size) const
     {
@@ -886,7 +897,8 @@ struct ChunkWork {
 /// Calls f(cell) for every cell of size 2^shift lattice units (cell c spans [c 2^shift,
 /// (c+1) 2^shift] per axis) within [lo, hi] (cells, inclusive) whose closed box the closed
 /// triangle v overlaps: columns along the triangle's dominant axis, three edge axes per column,
-/// the plane and six edge axes per cell, all exact (the same 13 axes as svo_triangle_box_overlap).
+/// the plane and six edge axes per cell (skipped in columns inside the triangle's shadow, where they
+/// cannot separate), all exact (the same 13 axes as svo_triangle_box_overlap).
 template <class F>
 inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int64_t lo_in[3], const int64_t hi_in[3], F&& f)
 {
@@ -920,6 +932,10 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             bmin[w] = 0;
             // The three edge axes perpendicular to the dominant axis depend on the column only.
             if (!axis_ok(ax[w][0], bmin) || !axis_ok(ax[w][1], bmin) || !axis_ok(ax[w][2], bmin)) continue;
+            // A column whose square lies inside the triangle's projection: every cell the plane
+            // passes through overlaps the triangle, so the six per-cell edge axes are skipped.
+            const bool inside = SatTriangle::axis_inside(ax[w][0], bmin, S) && SatTriangle::axis_inside(ax[w][1], bmin, S) &&
+                                SatTriangle::axis_inside(ax[w][2], bmin, S);
             // The plane's w range over the column's square (double), plus one cell of margin; the
             // exact plane test below decides.
             double wlo = INFINITY, whi = -INFINITY;
@@ -941,8 +957,10 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             for (int64_t cw = k0; cw <= k1; ++cw) {
                 bmin[w] = cw * S;
                 if (!T.plane_ok(bmin, S)) continue;
-                if (!axis_ok(ax[u][0], bmin) || !axis_ok(ax[u][1], bmin) || !axis_ok(ax[u][2], bmin)) continue;
-                if (!axis_ok(ax[vv][0], bmin) || !axis_ok(ax[vv][1], bmin) || !axis_ok(ax[vv][2], bmin)) continue;
+                if (!inside) {
+                    if (!axis_ok(ax[u][0], bmin) || !axis_ok(ax[u][1], bmin) || !axis_ok(ax[u][2], bmin)) continue;
+                    if (!axis_ok(ax[vv][0], bmin) || !axis_ok(ax[vv][1], bmin) || !axis_ok(ax[vv][2], bmin)) continue;
+                }
                 int64_t c[3];
                 c[u] = cu;
                 c[vv] = cv;
