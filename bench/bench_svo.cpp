@@ -30,7 +30,8 @@
 // Environment: RAYKIT_BENCH_SVO_FULL=1 (set by scripts/bench.sh and scripts/bench_svo.sh) registers
 // depths 6..11 for every mesh and 12..13 for the 1k mesh, with a minimum time per row; otherwise
 // (the bench.smoke ctest) only depths 6..7, one iteration each. RAYKIT_BENCH_SVO_MAX_DEPTH=<d> caps
-// the depth either way.
+// the depth either way. RAYKIT_BENCH_SVO_SKIP=1 registers no octree row (scripts/bench.sh sets it
+// for its extra processes, which repeat only the per-call suites).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -283,6 +284,7 @@ void register_row(const MeshCase& mc, int depth, int threads, bool paired, bool 
 
 void register_svo()
 {
+    if (env("RAYKIT_BENCH_SVO_SKIP") == "1") return;
     const bool full = env("RAYKIT_BENCH_SVO_FULL") == "1";
     int cap = 99;
     const std::string cap_s = env("RAYKIT_BENCH_SVO_MAX_DEPTH");

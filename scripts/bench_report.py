@@ -1,7 +1,15 @@
 #!/usr/bin/env python3
 """Turns raykit_bench's Google Benchmark JSON into docs/benchmarks.md and speed-vs-error plots.
 
-Usage: python3 scripts/bench_report.py --json build/bench.json [--out-dir docs]
+Usage: python3 scripts/bench_report.py --json build/bench.json [--json MORE.json ...] [--out-dir docs]
+           [--merged-out build/bench.json] [--previous build/bench.prev.json] [--binary-sha256 SHA]
+
+Several --json files are the same benchmarks run in separate processes (scripts/bench.sh): they are
+merged (each iteration entry tagged with its process, the first file's context kept) and, with
+--merged-out, written as one JSON. A row's value is then the median over the processes and its
+range the range of the per-process values (each process's own median over its repetitions).
+--previous names an earlier merged JSON: when its raykit_binary_sha256 equals --binary-sha256 (the
+same build), the report states how many rows of each run lie inside the other's range.
 
 Writes OUT_DIR/benchmarks.md (machine context, then one section per bench file ("suite"), each with
 its plot and one table per family, in registration order) and, per suite with plotted families,
@@ -77,6 +85,7 @@ class Row:
         self.entry = entry  # every field and counter, for sections that read their own (octree build)
         self.cv = None  # relative run-to-run spread of the time, when repetitions were aggregated
         self.reps = 1
+        self.samples = 1  # how many values the range is taken over (processes, else repetitions)
         # Paired timing (bench_common.hpp run_paired): (median, min, max) over the repetitions.
         self.rel = None        # own / baseline, harness subtracted from both
         self.rel_gross = None  # own / baseline, harness included
@@ -107,17 +116,54 @@ def strip_manual(name):
     return name[:-len("/manual_time")] if name.endswith("/manual_time") else name
 
 
+def per_process(runs, key):
+    """The values of `key` the spread is taken over: one per process (the median of that process's
+    repetitions) when the runs come from several processes, else one per repetition."""
+    groups = {}
+    for r in runs:
+        v = key(r) if callable(key) else r.get(key)
+        if v is not None:
+            groups.setdefault(r.get("raykit_process", 0), []).append(v)
+    if len(groups) > 1:
+        return [statistics.median(v) for _, v in sorted(groups.items())]
+    return next(iter(groups.values()), [])
+
+
 def paired_stats(runs, key):
-    """(median, min, max) of a paired counter over the repetitions, or None."""
-    vals = [r[key] for r in runs if r.get(key) is not None]
+    """(median, min, max) of a paired counter over the processes (or the repetitions), or None."""
+    vals = per_process(runs, key)
     if not vals:
         return None
     return statistics.median(vals), min(vals), max(vals)
 
 
-def load(path):
+def merge_json(paths, binary_sha256=None):
+    """One Google Benchmark JSON from several processes' files: the first file's context (plus
+    raykit_processes and raykit_binary_sha256), every file's benchmarks, each iteration entry tagged
+    with "raykit_process" (1, 2, ...)."""
+    merged = None
+    for k, path in enumerate(paths, start=1):
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        if merged is None:
+            merged = {"context": dict(data.get("context", {})), "benchmarks": []}
+        for e in data.get("benchmarks", []):
+            e = dict(e)
+            e["raykit_process"] = k
+            merged["benchmarks"].append(e)
+    merged["context"]["raykit_processes"] = len(paths)
+    if binary_sha256:
+        merged["context"]["raykit_binary_sha256"] = binary_sha256
+    return merged
+
+
+def read_json(path):
     with open(path, encoding="utf-8") as f:
-        data = json.load(f)
+        return json.load(f)
+
+
+def load(data):
+    """(context, rows) of a Google Benchmark JSON (a dict, see read_json and merge_json)."""
     context = data.get("context", {})
     entries = data.get("benchmarks", [])
 
@@ -145,15 +191,17 @@ def load(path):
         if run in iterations and (len(iterations[run]) > 1 or run not in medians):
             runs = iterations[run]
             row = Row(run, runs[0])
-            times = [t for t in (ns_per_call(r) for r in runs) if t is not None]
+            times = per_process(runs, ns_per_call)
             row.ns = statistics.median(times) if times else None
             row.reps = len(runs)
+            row.samples = len(times)
             if len(times) > 1 and row.ns:
                 row.cv = statistics.stdev(times) / statistics.mean(times)
             row.add_paired(runs)
         elif run in medians:
             row = Row(run, medians[run])
             row.reps = medians[run].get("repetitions", 1)
+            row.samples = row.reps
             cv = cvs.get(run)
             if cv is not None and cv.get("cpu_time") is not None:
                 row.cv = cv["cpu_time"]  # a fraction (aggregate_unit "percentage")
@@ -164,10 +212,8 @@ def load(path):
     return context, rows
 
 
-def load_errors(path):
+def load_errors(data):
     """[(run name, error message)] of the benchmarks that skipped with an error (load() drops them)."""
-    with open(path, encoding="utf-8") as f:
-        data = json.load(f)
     out = []
     for e in data.get("benchmarks", []):
         if e.get("error_occurred"):
@@ -268,7 +314,7 @@ def fmt_rel(row, base):
         if hi < 0.05:
             return "< 0.05 (harness level)"
         s = "%.2f" % med
-        if row.reps > 1:
+        if row.samples > 1:
             s += " (%.2f–%.2f)" % (lo, hi)
         return s
     return "%.2f" % (row.ns / base.ns) if (base and row.ns and base.ns) else "—"
@@ -327,8 +373,14 @@ def machine_table(context, rows):
     add("Google Benchmark library build type", "%s (the harness library as packaged, not the measured code)"
         % context.get("library_build_type", "?"))
     reps = max((r.reps for r in rows), default=1)
-    add("repetitions", "%d, randomly interleaved (median shown; ± and ranges are the run-to-run spread)" % reps
-        if reps > 1 else "1")
+    procs = int(context.get("raykit_processes", 1))
+    if procs > 1:
+        add("repetitions", "%d processes, %d repetition%s each, rows randomly interleaved in each (median "
+            "shown; ± and ranges are the spread over the processes)" % (
+                procs, max(1, reps // procs), "" if reps // procs <= 1 else "s"))
+    else:
+        add("repetitions", "%d, randomly interleaved (median shown; ± and ranges are the run-to-run spread)" % reps
+            if reps > 1 else "1")
     add("calls per iteration", context.get("raykit_inputs_per_iteration", "?"))
     add("accuracy sweep points", context.get("raykit_sweep_points", "?"))
     return lines
@@ -1006,6 +1058,50 @@ def svo_trace_summary(out_dir):
     return md
 
 
+def agreement(rows, prev_rows):
+    """How two runs' paired ratios agree: for every row with a relative cost in both, whether each
+    run's median lies inside the other's range. Returns a dict (see consecutive_run_text)."""
+    prev = {r.name: r for r in prev_rows if r.rel is not None}
+    out = {"n": 0, "both": 0, "misses": [], "diffs": []}
+    for r in rows:
+        p = prev.get(r.name)
+        if r.rel is None or p is None or r.rel[2] < 0.05:
+            continue
+        out["n"] += 1
+        med, lo, hi = r.rel
+        pmed, plo, phi = p.rel
+        out["diffs"].append(abs(med - pmed) / pmed if pmed else 0.0)
+        if plo <= med <= phi and lo <= pmed <= hi:
+            out["both"] += 1
+        else:
+            out["misses"].append((r, p))
+    return out
+
+
+def consecutive_run_text(context, prev_context, agree):
+    """The sentences of "How to read" on the run-to-run check, from the data (None: not compared)."""
+    if prev_context is None:
+        return ("No previous run was compared with this one (scripts/bench.sh compares with the run before "
+                "it when both come from the same binary).")
+    sha = context.get("raykit_binary_sha256")
+    if not sha or prev_context.get("raykit_binary_sha256") != sha:
+        return ("The run before this one came from another build, so it was not compared (rebuilds are not "
+                "reruns, below).")
+    if not agree["n"]:
+        return "The run before this one had no paired rows in common with this one."
+    diffs = sorted(agree["diffs"])
+    text = ("Checked against the run before it (same binary, %s): in %d of %d rows each run's median lies "
+            "inside the other's range; the medians differ by %.1f %% at most (median %.2f %%)." % (
+                prev_context.get("date", "?"), agree["both"], agree["n"], 100.0 * diffs[-1],
+                100.0 * statistics.median(diffs)))
+    if agree["misses"]:
+        worst = sorted(agree["misses"], key=lambda rp: -abs(rp[0].rel[0] - rp[1].rel[0]) / rp[1].rel[0])
+        items = ["`%s` %.3f (%.3f–%.3f) against %.3f (%.3f–%.3f)" % (
+            r.name, r.rel[0], r.rel[1], r.rel[2], p.rel[0], p.rel[1], p.rel[2]) for r, p in worst[:4]]
+        text += " Outside: " + "; ".join(items) + ("; ..." if len(worst) > 4 else "") + "."
+    return text
+
+
 def goal_lines(context, suite):
     """The suite's goals (raykit_suite:<s>:goals, see SuiteInfo::goals), each said met or missed with
     its error and its paired relative cost (median and range of repetitions)."""
@@ -1020,14 +1116,15 @@ def goal_lines(context, suite):
             continue
         med, lo, hi = row.rel
         ok = row.max_abs <= float(max_err) and med <= float(max_rel)
-        out.append(head + "**%s** (error %.2g, cost %.2fx, %.2f to %.2f over the repetitions)." % (
-            "met" if ok else "missed", row.max_abs, med, lo, hi))
+        out.append(head + "**%s** (error %.2g, cost %.2fx, %.2f to %.2f over the %s)." % (
+            "met" if ok else "missed", row.max_abs, med, lo, hi,
+            "processes" if int(context.get("raykit_processes", 1)) > 1 else "repetitions"))
     if out:
         out.append("")
     return out
 
 
-def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
+def write_markdown(context, rows, suites, out_dir, pngs, errors=(), consecutive=None):
     pngs_written = [os.path.basename(p) for p in pngs.values() if p]
     sources = [s.source for s in suites if s.source]
 
@@ -1036,9 +1133,9 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     md.append("")
     md.append("<!-- Generated by scripts/bench_report.py from raykit_bench's JSON. Do not edit by hand. -->")
     md.append("")
-    md.append("Reproduce with `bash scripts/bench.sh` (Release build of %s, 5 repetitions, then "
-              "`python3 scripts/bench_report.py --json build/bench.json --out-dir docs`, which rewrites this "
-              "file%s)." % (
+    md.append("Reproduce with `bash scripts/bench.sh` (Release build of %s; the per-call suites run in 5 "
+              "separate processes, then `scripts/bench_report.py` merges them into `build/bench.json` and "
+              "rewrites this file%s)." % (
                   ", ".join("`%s`" % s for s in sources) if sources else "`bench/bench_*.cpp`",
                   " and " + ", ".join("`img/%s`" % p for p in pngs_written) if pngs_written else ""))
     md.append("")
@@ -1056,22 +1153,21 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=()):
     md.append("")
     md.append("- **ns/call** (ns/pixel where a call processes a pixel): CPU time per call, the median over the "
               "iterations of a pass over a pre-generated array of independent inputs, harness included; ± is the "
-              "run-to-run coefficient of variation over the repetitions. Only the *ratios* between rows mean "
+              "coefficient of variation over the processes. Only the *ratios* between rows mean "
               "anything; absolute CPU times are not the point (see [GPU figures](#gpu-figures)).")
     md.append("- **relative cost**: the cost of a call relative to the section's baseline (named at the top of "
-              "each section) = 1.0, measured *paired*: every benchmark iteration times three passes over the same "
-              "4096 inputs back to back, in rotating order: the row's function, the baseline and the *harness* "
-              "(the same loop returning each input unchanged). The ratio (row − harness) / (baseline − harness) "
-              "is taken per iteration and its median kept, so a slow patch of the machine, which slows the three "
-              "passes alike, cancels. Shown: the median over the repetitions, and in brackets their range within "
-              "this run. That range understates the spread between runs: two consecutive runs of one build "
-              "(2026-11-25) agreed within 2 % on every row, within 0.6 % except the environment-map lookups, "
-              "whose texture reads vary most, while most in-run ranges are narrower than 0.5 %. Each section "
-              "states its harness cost.")
-    md.append("- **gross**: the same paired ratio with the harnesses left in (median of repetitions). On an "
+              "each section) = 1.0, measured *paired*: every benchmark iteration times four passes over the same "
+              "4096 inputs back to back, in rotating order: the row's function, its *harness* (the same loop "
+              "returning each input unchanged), the baseline and the baseline's harness. The ratio (row − "
+              "harness) / (baseline − baseline harness) is taken per iteration and its median kept, so a slow "
+              "patch of the machine, which slows the four passes alike, cancels. Shown: the median over the processes (each runs every row once, in its "
+              "own random order), and in brackets the range of the per-process values, the run-to-run spread. "
+              + (consecutive or consecutive_run_text(context, None, None)) + " Each section states its harness "
+              "cost.")
+    md.append("- **gross**: the same paired ratio with the harnesses left in (median of the processes). On an "
               "out-of-order CPU a function's work partly overlaps its harness's loads and stores, so the truth "
               "lies between the two columns; for the cheapest rows (a few cycles per call) they differ most.")
-    md.append("- **Rebuilds are not reruns.** Runs of one build agree within the bracketed ranges; a rebuild "
+    md.append("- **Rebuilds are not reruns.** The bracketed ranges are the spread of runs of one build; a rebuild "
               "that only moves code (another file edited, another compiler) can shift the cheapest rows by about "
               "a cycle per call (the timed loops are aligned to 64 bytes, `-falign-loops=64`, to limit this), so "
               "compare rows of one report, not reports of different builds.")
@@ -1161,15 +1257,31 @@ def anchor(title):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--json", required=True, help="Google Benchmark JSON output of raykit_bench")
+    ap.add_argument("--json", required=True, action="append",
+                    help="Google Benchmark JSON output of raykit_bench; repeat it for separate processes")
     ap.add_argument("--out-dir", default="docs", help="where benchmarks.md and img/ go (default: docs)")
+    ap.add_argument("--merged-out", help="write the merged JSON here (what --previous reads next time)")
+    ap.add_argument("--previous", help="an earlier merged JSON of the same binary to compare with")
+    ap.add_argument("--binary-sha256", help="SHA-256 of the raykit_bench binary that wrote the JSON")
     args = ap.parse_args(argv)
 
-    context, rows = load(args.json)
+    if len(args.json) == 1 and not args.binary_sha256:
+        data = read_json(args.json[0])
+    else:
+        data = merge_json(args.json, args.binary_sha256)
+    if args.merged_out:
+        with open(args.merged_out, "w", encoding="utf-8") as f:
+            json.dump(data, f, indent=1)
+    context, rows = load(data)
     if not rows:
-        print("bench_report: no benchmarks in %s" % args.json, file=sys.stderr)
+        print("bench_report: no benchmarks in %s" % ", ".join(args.json), file=sys.stderr)
         return 1
-    errors = load_errors(args.json)
+    errors = load_errors(data)
+    consecutive = None
+    if args.previous and os.path.exists(args.previous):
+        prev_context, prev_rows = load(read_json(args.previous))
+        consecutive = consecutive_run_text(context, prev_context, agreement(rows, prev_rows))
+        print("bench_report: " + consecutive)
     suites = make_suites(context, rows)
     os.makedirs(args.out_dir, exist_ok=True)
     pngs = {}
@@ -1181,7 +1293,7 @@ def main(argv=None):
             pngs[suite.name] = write_plot(context, suite, img_dir)
     if not any(s.plot_families or is_octree_suite(s) for s in suites):
         print("bench_report: nothing to plot", file=sys.stderr)
-    md = write_markdown(context, rows, suites, args.out_dir, pngs, errors)
+    md = write_markdown(context, rows, suites, args.out_dir, pngs, errors, consecutive)
     drawn = [p for p in pngs.values() if p]
     print("bench_report: wrote %s (%d benchmarks)%s" % (md, len(rows), "".join(", %s" % p for p in drawn)))
     return 0
