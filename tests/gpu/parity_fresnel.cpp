@@ -115,7 +115,7 @@ TEST(GpuParity, FresnelWindowModes)
                        {dom::cosine(), dom::eta(), dom::range(1.0f, 4.0f)}, 1,
                        "o[0] = rk_fresnel_window(a[0], a[1], a[2]);",
                        [mode, expect](const float* a, float* o) { o[0] = expect(mode, a[0], a[1], a[2]); },
-                       2e-6, 2e-5, {{"RK_FRESNEL_WINDOW_MODE", std::to_string(mode)}}};
+                       2e-6, 2e-5, {{"RK_FRESNEL_WINDOW_MODE", std::to_string(mode)}}, true, {}};
         const parity::Result r = parity::run(c, parity::shader_dir(), 2048);
         EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
     }

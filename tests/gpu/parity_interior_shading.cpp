@@ -111,8 +111,8 @@ std::vector<parity::Case> interior_shading_cases()
         RK_PARITY("rk_im_furniture_wrap", F, (dom::range(-20.0f, 20.0f)), 2,
                   float w = rk_im_furniture_wrap(clamp(a[0], -1e6f, 1e6f));
                   o[0] = min(w, 1.0f - w); o[1] = min(fract(w + 0.25f), 1.0f - fract(w + 0.25f));),
-        parity::Case{"rk_im_furniture_plane_grad", F, furn_in, 17, "", nullptr, 2e-6, 2e-5, {}},
-        parity::Case{"rk_im_furniture_plane", F, furn_in, 17, "", nullptr, 2e-6, 2e-5, {}},
+        parity::Case{"rk_im_furniture_plane_grad", F, furn_in, 17, "", nullptr, 2e-6, 2e-5, {}, true, {}},
+        parity::Case{"rk_im_furniture_plane", F, furn_in, 17, "", nullptr, 2e-6, 2e-5, {}, true, {}},
         RK_PARITY("rk_im_furniture_visible", F, (depth(), dom::range(0.5f, 8.0f), dom::unit(), dom::unit()), 1,
                   rk_im_grid g; g.room_size = vec3(3.0f); g.origin = vec3(0.0f);
                   rk_im_furniture_hit f = rk_im_furniture_plane(vec3(1.0f, 1.0f, 0.0f), vec3(0.3f, 1.7f, 4.0f),
@@ -242,7 +242,7 @@ TEST(GpuParity, InteriorComposeAdditiveMode)
                        o[1] = w.y;
                        o[2] = w.z;
                    },
-                   2e-6, 2e-5, {{"RK_IM_COMPOSE_MODE", "1"}}};
+                   2e-6, 2e-5, {{"RK_IM_COMPOSE_MODE", "1"}}, true, {}};
     const parity::Result r = parity::run(c, parity::shader_dir(), 2048);
     EXPECT_TRUE(r.ok) << r.worst;
 }

@@ -323,7 +323,7 @@ TEST(GpuParity, WindowGlassModes)
                        [f](const float* a, float* o) { o[0] = f(a[0], a[1], a[2]); },
                        2e-6,
                        2e-5,
-                       {{"RK_WINDOW_GLASS_FRESNEL", m.glass}, {"RK_FRESNEL_WINDOW_MODE", m.fresnel}}};
+                       {{"RK_WINDOW_GLASS_FRESNEL", m.glass}, {"RK_FRESNEL_WINDOW_MODE", m.fresnel}}, true, {}};
         const parity::Result r = parity::run(c, parity::shader_dir(), 2048);
         EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;

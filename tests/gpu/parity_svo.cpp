@@ -45,9 +45,21 @@ TEST(GpuParity, SvoCodecs)
     exact.push_back({0, 1});
     cases.push_back(svo_case(RK_PARITY_X("rk_svo_unpack_color", "raykit/svo_format.glsl", (u, u), 4,
                                          vec4 c = rk_svo_unpack_color(RK_WORD(0, 1)); o[0] = c.x; o[1] = c.y; o[2] = c.z; o[3] = c.w;)));
-    exact.push_back({3});
+    // Alpha is code / 255: one correctly rounded division in C++, but GLSL allows 2.5 ulp for a
+    // division (NVIDIA multiplies by a reciprocal: 1 ulp off for half the codes), so no column is
+    // bit-exact here; the tolerance below (2e-7 + 2e-6 |x|) is ~30 ulp at 1.
+    exact.push_back({});
     cases.push_back(svo_case(RK_PARITY_X("rk_svo_pack_normal", "raykit/svo_format.glsl", (any, any, any), 2,
                                          uint w = rk_svo_pack_normal(vec3(a[0], a[1], a[2])); RK_EMIT_U(0, w))));
+    // A component that underflows on a flushing driver (FLT_MIN / 1.27 -> -0) flips the sign the
+    // octahedral fold picks for it: on the fold's edge both words decode to the same direction. Such
+    // rows are ties when the two words decode within one quantisation step (1.3e-4 rad) of each
+    // other; every other row must give the same word.
+    cases.back().tie = [](const float*, const float* g, const float* h) {
+        const glm::vec3 a = rk_svo_unpack_normal(uint32_t(g[0]) | (uint32_t(g[1]) << 16));
+        const glm::vec3 b = rk_svo_unpack_normal(uint32_t(h[0]) | (uint32_t(h[1]) << 16));
+        return glm::length(glm::dvec3(a) - glm::dvec3(b)) <= 1.3e-4;
+    };
     exact.push_back({0, 1});
     cases.push_back(svo_case(RK_PARITY_X("rk_svo_unpack_normal", "raykit/svo_format.glsl", (u, u), 3,
                                          vec3 n = rk_svo_unpack_normal(RK_WORD(0, 1)); o[0] = n.x; o[1] = n.y; o[2] = n.z;)));
@@ -195,12 +207,18 @@ TEST(GpuParity, SvoLookupOnPackedTrees)
 TEST(GpuParity, PortableBitCountAndFindMsb)
 {
     const parity::Domain any{-1e30f, 1e30f, false, {0.0f, -0.0f, 1.0f, -1.0f, 1e-45f, -1e-45f, 3.4028235e38f}};
-    const parity::Case c = RK_PARITY("rk_bit_count_portable / rk_find_msb_portable", "raykit/common.glsl", (any), 4,
-                                     o[0] = float(rk_bit_count_portable(floatBitsToUint(a[0])));
-                                     o[1] = float(bitCount(floatBitsToUint(a[0])));
-                                     o[2] = float(rk_find_msb_portable(floatBitsToUint(a[0])));
-                                     o[3] = float(findMSB(floatBitsToUint(a[0]))););
-    const parity::Result r = parity::run(c, parity::shader_dir(), 8192);
+    // findMSB's -1 is compared as an int: NVIDIA 580.159 converts findMSB(0u) to float as
+    // 4294967295 (as if the int were a uint), although the int itself is -1.
+    parity::Case c = RK_PARITY("rk_bit_count_portable / rk_find_msb_portable", "raykit/common.glsl", (any), 5,
+                               o[0] = float(rk_bit_count_portable(floatBitsToUint(a[0])));
+                               o[1] = float(bitCount(floatBitsToUint(a[0])));
+                               int mp = rk_find_msb_portable(floatBitsToUint(a[0]));
+                               int mb = findMSB(floatBitsToUint(a[0]));
+                               o[2] = mp == -1 ? -1.0f : float(mp);
+                               o[3] = mb == -1 ? -1.0f : float(mb);
+                               o[4] = mp < 0 ? 1.0f : 0.0f;);
+    c.flush_denormal_inputs = false;  // bit patterns: every denormal class reaches the functions
+    const parity::Result r = parity::run(c, parity::shader_dir(), 8192, {0, 1, 2, 3, 4});
     EXPECT_TRUE(r.ok) << r.mismatches << " mismatches, worst " << r.worst;
     EXPECT_EQ(r.non_finite, 0);
 }

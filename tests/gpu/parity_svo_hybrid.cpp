@@ -1,7 +1,9 @@
 // Hybrid rendering on the driver (svo_hybrid.glsl through samples/common/rk_svo_gl.hpp): for the
 // OpenGL [-1, 1], zero-to-one (Vulkan's) and reversed-Z conventions,
-//   - a voxel face and a rasterised quad in the same plane write the same depth (within a few
-//     2^-24), pixel for pixel;
+//   - a voxel face writes the float64 reference depth of its plane at the pixel centre (within a
+//     few 2^-24), and a rasterised quad in the same plane writes the same depth within the
+//     rasteriser's own error against that reference (a few 2^-24 on llvmpipe; NVIDIA's depth
+//     interpolation was measured 34 x 2^-24 off it), pixel for pixel;
 //   - occlusion is right both ways: a rasterised plane cutting through a voxel block, drawn before
 //     or after it, shows in exactly the pixels where the float64 reference (exact pixel ray against
 //     the plane, CPU traversal for the voxels) says it is nearer, and both draw orders give the
@@ -113,8 +115,23 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
         face_mesh.draw(model, view, proj, glm::vec3(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
         const std::vector<float> dr = target.read_depth();
         const float cleared = rev ? 0.0f : 1.0f;
+        // float64 reference: the window depth of the face's plane at each pixel centre. NDC depth is
+        // an affine function of NDC x, y over a plane; fitted through three projected corners.
+        const glm::dmat4 mvp = glm::dmat4(proj) * glm::dmat4(view) * glm::dmat4(model);
+        glm::dvec3 q[3];
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec4 c = mvp * glm::dvec4(glm::dvec3(face[size_t(k)]), 1.0);
+            q[k] = glm::dvec3(c) / c.w;
+        }
+        const glm::dvec3 fn = glm::cross(q[1] - q[0], q[2] - q[0]);  // z = q0.z - (fn.x (x - q0.x) + fn.y (y - q0.y)) / fn.z
+        const bool zero_to_one = s.conv != SvoDepthConvention::gl_minus_one_to_one;
+        auto exact_depth = [&](int x, int y) {
+            const double nx = (x + 0.5) / W * 2.0 - 1.0, ny = (y + 0.5) / H * 2.0 - 1.0;
+            const double z = q[0].z - (fn.x * (nx - q[0].x) + fn.y * (ny - q[0].y)) / fn.z;
+            return zero_to_one ? z : 0.5 * z + 0.5;
+        };
         long compared = 0;
-        double worst = 0.0;
+        double worst = 0.0, worst_voxel = 0.0, worst_raster = 0.0;
         for (int y = 1; y < H - 1; ++y)
             for (int x = 1; x < W - 1; ++x) {
                 bool inner = true;  // the quad covers the 3x3 neighbourhood: not an edge pixel
@@ -123,13 +140,20 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
                 if (!inner) continue;
                 const size_t i = size_t(y * W + x);
                 ASSERT_NE(dv[i], cleared) << s.name << ": the voxel block is missing at " << x << "," << y;
+                const double ref = exact_depth(x, y);
                 worst = std::max(worst, double(std::abs(dv[i] - dr[i])) / 0x1p-24);
+                worst_voxel = std::max(worst_voxel, std::abs(double(dv[i]) - ref) / 0x1p-24);
+                worst_raster = std::max(worst_raster, std::abs(double(dr[i]) - ref) / 0x1p-24);
                 ++compared;
             }
-        std::printf("[hybrid] %-14s voxel face vs coplanar triangle: %ld pixels, depth differs by at most %.1f x 2^-24\n",
-                    s.name, compared, worst);
+        std::printf("[hybrid] %-14s voxel face vs coplanar triangle: %ld pixels, depth differs by at most %.1f x 2^-24 "
+                    "(voxels vs float64 %.1f, rasteriser vs float64 %.1f)\n",
+                    s.name, compared, worst, worst_voxel, worst_raster);
         EXPECT_GT(compared, 500);
-        EXPECT_LE(worst, 6.0) << s.name;  // measured <= 4
+        // Ours: the voxel pass writes the exact plane depth to a few 2^-24 (measured <= 4 on llvmpipe).
+        EXPECT_LE(worst_voxel, 6.0) << s.name;
+        // Together: no more apart than the rasteriser's own error allows (llvmpipe measured <= 4 apart).
+        EXPECT_LE(worst, worst_raster + 6.0) << s.name;
 
         // 2. Occlusion both ways, in both draw orders, against the float64 reference.
         const SvoHybridView hv = svo_hybrid_view(model, view, proj, s.conv);

@@ -106,7 +106,7 @@ TEST(GpuParity, TonemapOperatorMacro)
                                o[1] = r.y;
                                o[2] = r.z;
                            },
-                           2e-5, 2e-5, tonemap_defines(static_cast<ToneOperator>(op), look)};
+                           2e-5, 2e-5, tonemap_defines(static_cast<ToneOperator>(op), look), true, {}};
             const parity::Result r = parity::run(c, parity::shader_dir(), 1024);
             EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
         }
@@ -182,7 +182,7 @@ TEST(GpuParity, TonemapAdversarialRanges)
         for (int look = 0; look <= (op == 4 ? 2 : 0); ++look) {
             parity::Case c{"rk_tonemap op " + std::to_string(op) + " look " + std::to_string(look), T, {hdr(), hdr(), hdr(), hdr()}, 3,
                            "vec3 r = rk_tonemap(vec3(a[0], a[1], a[2]), a[3]); o[0] = r.x; o[1] = r.y; o[2] = r.z;",
-                           [](const float*, float*) {}, 0.0, 0.0, tonemap_defines(static_cast<ToneOperator>(op), look)};
+                           [](const float*, float*) {}, 0.0, 0.0, tonemap_defines(static_cast<ToneOperator>(op), look), true, {}};
             bad += parity::run_adversarial(c, parity::shader_dir(), 4096, draw, in(0.0f, 1.0f));
         }
     }
