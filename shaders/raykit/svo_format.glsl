@@ -265,6 +265,13 @@ RK_INLINE uint rk_svo_pack_normal(vec3 n)
     // Scale the largest component to 1 first so that the L1 norm neither overflows nor underflows.
     float m = max(a.x, max(a.y, a.z));
     if (!(m > 0.0f) || !(m <= RK_FLT_MAX)) return rk_svo_pack_snorm16(0.0f) | (rk_svo_pack_snorm16(0.0f) << 16u);
+    // Above 2^100 scale by 2^-100 first (exact): GLSL's division is only specified for divisors up
+    // to 2^126, and a GPU that divides by multiplying with a reciprocal flushes 1/m to 0 there
+    // (NVIDIA: every normal with a component near FLT_MAX packed as +z).
+    if (m > 1.2676506e30f) {
+        n *= 7.8886091e-31f;
+        m *= 7.8886091e-31f;
+    }
     vec3 p = n / m;
     float s = abs(p.x) + abs(p.y) + abs(p.z);
     float u = p.x / s;

@@ -221,6 +221,8 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
     Result r;
     r.rows = static_cast<long>(rows);
     std::vector<float> cpu(n_out);
+    int shown = 0;
+    std::string mismatch_rows;  // the first three mismatching rows, whole
     for (size_t i = 0; i < rows; ++i) {
         std::fill(cpu.begin(), cpu.end(), 0.0f);
         c.cpu(&in[i * n_in], cpu.data());
@@ -248,13 +250,21 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
         if (r.mismatches > mismatches_before && row_finite && c.tie && c.tie(&in[i * n_in], &gpu[i * n_out], cpu.data())) {
             r.mismatches = mismatches_before;
             ++r.ties;
+        } else if (r.mismatches > mismatches_before && ++shown <= 3) {
+            std::string m = "in (";
+            for (size_t j = 0; j < n_in; ++j) m += rktest::fmt(in[i * n_in + j]);
+            m += ") gpu (";
+            for (size_t k = 0; k < n_out; ++k) m += rktest::fmt(gpu[i * n_out + k]);
+            m += ") cpu (";
+            for (size_t k = 0; k < n_out; ++k) m += rktest::fmt(cpu[k]);
+            mismatch_rows += "\n         mismatch: " + m + ")";
         }
     }
     r.ok = r.mismatches == 0;
-    std::printf("[parity] %-44s rows %6ld  max abs %.3g  max ulp %.3g  mismatches %ld  non-finite %ld%s%s%s\n",
+    std::printf("[parity] %-44s rows %6ld  max abs %.3g  max ulp %.3g  mismatches %ld  non-finite %ld%s%s%s%s\n",
                 c.name.c_str(), r.rows, r.max_abs, r.max_ulp, r.mismatches, r.non_finite,
                 c.tie ? ("  equivalent (ties) " + std::to_string(r.ties)).c_str() : "",
-                r.worst.empty() ? "" : "\n         worst: ", r.worst.c_str());
+                r.worst.empty() ? "" : "\n         worst: ", r.worst.c_str(), mismatch_rows.c_str());
     return r;
 }
 
