@@ -968,18 +968,21 @@ def paragraph(text):
     return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
-def interior_summary(out_dir):
+def interior_summary(out_dir, page="benchmarks_interior.md", heading=True):
     """The interior-mapping frame-time summary, quoted from benchmarks_interior.md (written by
-    scripts/bench_interior.sh), so that this page shows the ratios without a second source."""
-    md = ["## Interior mapping: frame time against a plain material", ""]
-    md.append("Interior mapping is measured as whole frames on the GL driver, not per call "
-              "([benchmarks_interior.md](benchmarks_interior.md), `bash scripts/bench_interior.sh`: "
-              "the scene, the method, per-feature costs, the depth pre-pass, 10^3 to 4*10^6 rooms and "
-              "SPIR-V counts).")
-    md.append("")
-    path = os.path.join(out_dir, "benchmarks_interior.md")
+    scripts/bench_interior.sh), so that this page shows the ratios without a second source; with
+    page="benchmarks_interior_gpu.md", the same from a GPU run (scripts/bench_gpu.sh)."""
+    md = ["## Interior mapping: frame time against a plain material", ""] if heading else []
+    if heading:
+        md.append("Interior mapping is measured as whole frames on the GL driver, not per call "
+                  "([benchmarks_interior.md](benchmarks_interior.md), `bash scripts/bench_interior.sh`: "
+                  "the scene, the method, per-feature costs, the depth pre-pass, 10^3 to 4*10^6 rooms and "
+                  "SPIR-V counts).")
+        md.append("")
+    path = os.path.join(out_dir, page)
     if not os.path.exists(path):
-        md.append("(Not measured yet: run `bash scripts/bench_interior.sh`.)")
+        md.append("(Not measured yet: run `bash scripts/bench_interior.sh`.)" if heading else
+                  "(No GPU run reported yet: `bash scripts/bench_gpu.sh` on a machine with a GPU.)")
         md.append("")
         return md
     with open(path, encoding="utf-8") as f:
@@ -1001,6 +1004,48 @@ def interior_summary(out_dir):
     while i < len(lines) and lines[i].strip():
         md.append(lines[i])
         i += 1
+    md.append("")
+    if heading:
+        md.append("The same on a GPU, from [benchmarks_interior_gpu.md](benchmarks_interior_gpu.md) "
+                  "(`scripts/bench_gpu.sh`, reported by `scripts/bench_interior.sh`; absolute times there):")
+        md.append("")
+        md.extend(interior_summary(out_dir, "benchmarks_interior_gpu.md", heading=False))
+    return md
+
+
+def svo_gl_gpu_summary(out_dir):
+    """The GPU frame times and ray rates of the voxel pass, quoted from benchmarks_svo_gl_gpu.md (a
+    run of bench_svo_gl on a GPU by scripts/bench_gpu.sh, reported by scripts/bench_svo_gl.sh)."""
+    path = os.path.join(out_dir, "benchmarks_svo_gl_gpu.md")
+    if not os.path.exists(path):
+        return ["(No GPU run reported yet: `bash scripts/bench_gpu.sh` on a machine with a GPU.)", ""]
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    renderer = next((l.split("**")[1] for l in lines if l.startswith("**") and l.count("**") >= 2), "?")
+    rows = {}
+    for l in lines:
+        cells = [c.strip() for c in l.strip().strip("|").split("|")] if l.startswith("| ") else []
+        if len(cells) >= 7 and cells[1].isdigit():
+            rows[(cells[0], int(cells[1]), cells[2], cells[3])] = cells
+    md = ["On a GPU (**%s**, [benchmarks_svo_gl_gpu.md](benchmarks_svo_gl_gpu.md): every depth, both sizes, "
+          "LOD errors and the plot): frame milliseconds (median) of the fragment voxel pass at full detail "
+          "and with 4-pixel LOD, of the same rays traced in a compute shader, and of rasterising the mesh; "
+          "Mrays/s counts the rays that enter the root cube. Gritzner's thesis: 21.6 ms at 1280x720, depth 11, "
+          "on a 2013 GPU; Wilks's: about 64 Mrays/s on a GTX 670." % renderer, ""]
+    md.append("| mesh | depth | size | voxel pass ms | lod4 ms | compute ms | raster ms | Mrays/s fragment | Mrays/s compute |")
+    md.append("|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    for key in rows:
+        mesh, depth, size, config = key
+        if config != "voxels":
+            continue
+        def ms(c):
+            r = rows.get((mesh, depth, size, c))
+            return r[4].split(" ")[0] if r else "-"
+        def rate(c):
+            r = rows.get((mesh, depth, size, c))
+            return r[6].split(";")[-1].strip() if r and ";" in r[6] else "-"
+        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s |" % (mesh, depth, size, ms("voxels"), ms("lod4"),
+                                                                  ms("compute"), ms("raster"), rate("voxels"), rate("compute")))
     md.append("")
     return md
 
@@ -1055,6 +1100,7 @@ def svo_trace_summary(out_dir):
     if os.path.exists(os.path.join(out_dir, "img", "bench_svo_gl_tradeoff.png")):
         md.append("![Level of detail: frame time against image error](img/bench_svo_gl_tradeoff.png)")
         md.append("")
+    md.extend(svo_gl_gpu_summary(out_dir))
     return md
 
 
