@@ -749,6 +749,36 @@ TEST(SvoBuildFilter, InnerNodesAreTheMeansOfTheirLeaves)
     EXPECT_EQ(rk_svo_unpack_normal(t.normal[0]), glm::vec3(0, 0, 1));
 }
 
+TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
+{
+    // Both sides of a thin wall inside one layer of voxels: x = 0.53125 facing -x and x = 0.546875
+    // facing +x (depth 4: voxels 1/16 wide, both in layer x = 8). Their area-weighted normals cancel
+    // exactly; the voxel then takes the normal of its largest contribution (+x or -x), not the
+    // direction the zero vector encodes (+z).
+    rkmesh::SvoMeshData m;
+    const float xs[2] = {0.53125f, 0.546875f};
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t b = static_cast<uint32_t>(m.positions.size());
+        m.positions.push_back({xs[side], 0.0f, 0.0f});
+        m.positions.push_back({xs[side], 1.0f, 0.0f});
+        m.positions.push_back({xs[side], 1.0f, 1.0f});
+        m.positions.push_back({xs[side], 0.0f, 1.0f});
+        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // normal -x
+        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // normal +x
+    }
+    m.material_ids.assign(4, 0);
+    m.materials.resize(1);
+    SvoTree t;
+    if (!build(m, fixed_unit_cube(4), t)) return;
+    const std::vector<Voxel> vox = voxels_of(t);
+    ASSERT_EQ(vox.size(), 256u);
+    for (const Voxel& v : vox) {
+        ASSERT_EQ(v.cell.x, 8u);
+        const glm::vec3 n = rk_svo_unpack_normal(t.normal[v.attr]);
+        EXPECT_GT(std::abs(n.x), 0.999f) << "voxel (" << v.cell.y << ", " << v.cell.z << "): normal " << n.x << " " << n.y << " " << n.z;
+    }
+}
+
 TEST(SvoBuildFilter, InnerNodesOfTheGradientQuad)
 {
     rkmesh::SvoMeshData m = z_quad(0.53125, 0.0, 1.0, 0.0, 1.0);

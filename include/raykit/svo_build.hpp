@@ -374,6 +374,7 @@ struct Accum {
     glm::vec4 tcol;
     glm::vec3 tnrm;
     float best_area;
+    glm::vec3 best_nrm;  // the normal of the largest contribution (where opposite faces cancel)
     uint16_t best_mat;
     uint8_t used;
 };
@@ -729,6 +730,7 @@ struct TriFrame {
     int64_t col_u = INT64_MIN, col_v = INT64_MIN;
     float sq[8][2];
     int nsq = 0;
+    bool col_inside = false;  // the column's square lies inside the projected triangle (sq is the square)
 
     bool setup(const Prepared& prep, const Tri& t, const double tv[3][3])
     {
@@ -783,6 +785,26 @@ struct TriFrame {
         return true;
     }
 
+    /// contribute() for a voxel whose full column square the triangle covers inside the voxel
+    /// (untextured colour): the same sums as the general path with the polygon = the unit square.
+    void contribute_full(int cu, int cv, Accum& acc) const
+    {
+        const double gu = cu + 0.5, gv = cv + 0.5;
+        glm::vec3 nrm = face;
+        if (has_vn && want_normal) {
+            glm::vec3 s(0.0f);
+            for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
+            const float l = glm::length(s);
+            if (l > 1e-30f && std::isfinite(l)) nrm = s / l;
+        }
+        const float total = static_cast<float>(scale);
+        acc.area += total;
+        acc.col += factor * total;
+        acc.nrm += nrm * total;
+        if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; acc.best_nrm = nrm; }
+        acc.used = 1;
+    }
+
     glm::dvec2 uv_at(double gu, double gv) const
     {
         glm::dvec2 r(0.0);
@@ -797,20 +819,40 @@ struct TriFrame {
         if (cu != col_u || cv != col_v) {
             col_u = cu;
             col_v = cv;
-            float tri2[3][2], b1[8][2], b2[8][2];
-            for (int k = 0; k < 3; ++k) {
-                tri2[k][0] = static_cast<float>(pu[k] - cu);
-                tri2[k][1] = static_cast<float>(pv[k] - cv);
+            // Inside: every corner of the square on the inner side of every edge (barycentrics >= 0,
+            // in double): then triangle ∩ square is the square itself and needs no clipping.
+            col_inside = true;
+            for (int c = 0; c < 4 && col_inside; ++c) {
+                const double qu = cu + double(c & 1), qv = cv + double(c >> 1);
+                for (int k = 0; k < 3; ++k) col_inside = col_inside && bc[k] + bu[k] * qu + bv[k] * qv >= 0.0;
             }
-            int n = clip2(tri2, 3, b1, 1.0f, 0.0f, 0.0f);
-            n = clip2(b1, n, b2, -1.0f, 0.0f, 1.0f);
-            n = clip2(b2, n, b1, 0.0f, 1.0f, 0.0f);
-            n = clip2(b1, n, sq, 0.0f, -1.0f, 1.0f);
-            nsq = n;
+            if (col_inside) {
+                static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+                std::memcpy(sq, unit, sizeof unit);
+                nsq = 4;
+            } else {
+                float tri2[3][2], b1[8][2], b2[8][2];
+                for (int k = 0; k < 3; ++k) {
+                    tri2[k][0] = static_cast<float>(pu[k] - cu);
+                    tri2[k][1] = static_cast<float>(pv[k] - cv);
+                }
+                int n = clip2(tri2, 3, b1, 1.0f, 0.0f, 0.0f);
+                n = clip2(b1, n, b2, -1.0f, 0.0f, 1.0f);
+                n = clip2(b2, n, b1, 0.0f, 1.0f, 0.0f);
+                n = clip2(b1, n, sq, 0.0f, -1.0f, 1.0f);
+                nsq = n;
+            }
         }
         // Strip 0 <= pa u' + pb v' + c0 <= 1 in column-local coordinates.
         const float a = static_cast<float>(pa), b = static_cast<float>(pb);
         const float c0 = static_cast<float>(pa * cu + pb * cv + pc - cw);
+        if (col_inside && !(tex && want_color) && c0 + std::min(a, 0.0f) + std::min(b, 0.0f) >= 0.0f &&
+            c0 + std::max(a, 0.0f) + std::max(b, 0.0f) <= 1.0f) {
+            // The whole square lies in the strip: the triangle crosses the voxel from side to side
+            // over its full column square. Area 1 (projected), centroid at the square's centre.
+            contribute_full(cu, cv, acc);
+            return;
+        }
         float s1[10][2], poly[12][2];
         int n = clip2(sq, nsq, s1, a, b, c0);
         n = clip2(s1, n, poly, -a, -b, 1.0f - c0);
@@ -877,7 +919,7 @@ struct TriFrame {
             acc.area += total;
             acc.col += col * total;
             acc.nrm += nrm * total;
-            if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; }
+            if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; acc.best_nrm = nrm; }
         } else {
             acc.touch += 1.0f;
             acc.tcol += col;
@@ -1023,7 +1065,9 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
             if (A.area > 0.0f) {
                 l.weight = A.area;
                 l.color = srgb.pack(A.col / A.area);
-                l.normal = want_normal ? rk_svo_pack_normal(A.nrm) : 0u;
+                // Opposite faces in one voxel (both sides of a thin part) cancel: then the normal of
+                // the largest contribution, not whatever direction the rounding leaves.
+                l.normal = want_normal ? rk_svo_pack_normal(glm::length(A.nrm) > 1e-3f * A.area ? A.nrm : A.best_nrm) : 0u;
             } else {
                 l.weight = 0.0f;
                 l.color = srgb.pack(A.tcol / std::max(A.touch, 1.0f));
