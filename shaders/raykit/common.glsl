@@ -50,6 +50,22 @@
 #define RK_OPTION_CHECK(constant, value) const uint constant = uint(value)
 #endif
 
+// RK_PRECISE: qualifies a local whose value depends on the written order of its operations (a
+// cancellation-free rewrite such as (1 - x) + n x, a tie test). GLSL 4.00+ and ES 3.20: `precise`,
+// which forbids the compiler to reassociate or fuse the operations that compute the value
+// (NVIDIA's compiler turns (1 - x) + n x into 1 + (n - 1) x, which is 0 for x = 1, n = 2e-20,
+// unless it is precise; docs/gpu-drivers.md). C++ and older GLSL: nothing (C++ compilers keep the
+// written order unless told otherwise, e.g. by -ffast-math).
+#if defined(__cplusplus)
+#define RK_PRECISE
+#elif defined(GL_ES) && __VERSION__ < 320
+#define RK_PRECISE
+#elif !defined(GL_ES) && __VERSION__ < 400
+#define RK_PRECISE
+#else
+#define RK_PRECISE precise
+#endif
+
 #define RK_PI 3.14159265358979323846f
 #define RK_HALF_PI 1.57079632679489661923f
 #define RK_INV_PI 0.31830988618379067154f

@@ -55,22 +55,23 @@ RK_INLINE float rk_fresnel_clamp_eta(float eta)
 
 /// rk_f0_from_ior: reflectance at normal incidence ((n1 - n2) / (n1 + n2))^2 between media of
 /// indices n1 and n2. Domain: n1, n2 > 0 (clamped to [RK_FLT_MIN, 1e30]).
-/// Max error: 5.5 ulp (9e7 random (n1, n2) + refinement). Cost: 1 add, 1 sub, 1 div, 1 mul.
-/// F0(1, 1.52) = 0.0425800.
+/// Max error: 5.5 ulp (9e7 random (n1, n2) + refinement). Cost: 1 add, 1 sub, 1 div, 1 clamp,
+/// 1 mul. F0(1, 1.52) = 0.0425800. Range [0, 1] (the ratio is clamped: a driver's division may
+/// be 2.5 ulp off, NVIDIA's gave 1.0000002 for n1 = 1e20).
 RK_INLINE float rk_f0_from_ior(float n1, float n2)
 {
     float a = clamp(n1, RK_FLT_MIN, 1e30f);
     float b = clamp(n2, RK_FLT_MIN, 1e30f);
-    return rk_sqr((a - b) / (a + b));
+    return rk_sqr(clamp((a - b) / (a + b), -1.0f, 1.0f));
 }
 
 /// rk_f0_from_eta: F0 for a relative index eta = n_t / n_i: ((eta - 1) / (eta + 1))^2.
 /// Domain: eta >= 0 (clamped to [0, 1e30]). Max error: 4.5 ulp (every 4th float in [0, 1e30] +
-/// refinement). Cost: 1 div, 3 flops.
+/// refinement). Cost: 1 div, 4 flops. Range [0, 1] (ratio clamped, as in rk_f0_from_ior).
 RK_INLINE float rk_f0_from_eta(float eta)
 {
     float e = clamp(eta, 0.0f, 1e30f);
-    return rk_sqr((e - 1.0f) / (e + 1.0f));
+    return rk_sqr(clamp((e - 1.0f) / (e + 1.0f), -1.0f, 1.0f));
 }
 
 /// rk_eta_from_f0: the relative index eta >= 1 whose F0 is f0 (inverse of rk_f0_from_eta on its
@@ -145,12 +146,12 @@ RK_INLINE vec2 rk_fresnel_dielectric_sp(float cos_i, float eta)
     float c = rk_saturate(cos_i);
     float e = rk_fresnel_clamp_eta(eta);
     float e2 = e * e;
-    float e2m1 = (e - 1.0f) * (e + 1.0f);  // eta^2 - 1 without cancellation near eta = 1
-    float s2 = (1.0f - c) * (1.0f + c);    // sin^2 without cancellation near normal incidence
+    RK_PRECISE float e2m1 = (e - 1.0f) * (e + 1.0f);  // eta^2 - 1 without cancellation near eta = 1
+    RK_PRECISE float s2 = (1.0f - c) * (1.0f + c);    // sin^2 without cancellation near normal incidence
     // g^2 = eta^2 - sin^2, formed where it does not cancel: near normal incidence (small sin^2)
     // as eta^2 - sin^2 (eta^2 - 1 + cos^2 would subtract ~1 from ~1 for small eta), elsewhere as
     // (eta^2 - 1) + cos^2 (exact at matched indices).
-    float g2 = s2 < 0.5f ? e2 - s2 : e2m1 + c * c;
+    RK_PRECISE float g2 = s2 < 0.5f ? e2 - s2 : e2m1 + c * c;
     if (g2 < 0.0f) {
         return vec2(1.0f);  // total internal reflection
     }
@@ -247,14 +248,14 @@ RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
 {
     float c = rk_saturate(cos_i);
     float c2 = c * c;
-    float s2 = (1.0f - c) * (1.0f + c);
+    RK_PRECISE float s2 = (1.0f - c) * (1.0f + c);
     vec3 n = clamp(eta, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
     vec3 kk = clamp(k, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
     vec3 n2 = n * n;
     vec3 k2 = kk * kk;
     // eta^2 - k^2 - sin^2 written as (eta - 1)(eta + 1) - k^2 + cos^2: no cancellation at
     // matched indices near grazing, where 1 - cos^2 rounds to 1.
-    vec3 t0 = (n - vec3(1.0f)) * (n + vec3(1.0f)) - k2 + vec3(c2);
+    RK_PRECISE vec3 t0 = (n - vec3(1.0f)) * (n + vec3(1.0f)) - k2 + vec3(c2);
     vec3 a2b2 = sqrt(t0 * t0 + 4.0f * n2 * k2);
     // a = Re sqrt(z), z = t0 + 2 i eta k: a^2 = (|z| + t0) / 2, which cancels when t0 < 0; there
     // the same value is (Im z)^2 / (2 (|z| - t0)) = 2 eta^2 k^2 / (|z| - t0), cancellation-free.
@@ -263,10 +264,10 @@ RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
     vec3 a = sqrt(max(mix(a2_pos, a2_neg, lessThan(t0, vec3(0.0f))), vec3(0.0f)));
     vec3 t1 = a2b2 + vec3(c2);
     vec3 t2 = (2.0f * c) * a;
-    vec3 rs = (t1 - t2) / max(t1 + t2, vec3(RK_FLT_MIN));
+    RK_PRECISE vec3 rs = (t1 - t2) / max(t1 + t2, vec3(RK_FLT_MIN));
     vec3 t3 = c2 * a2b2 + vec3(s2 * s2);
     vec3 t4 = t2 * s2;
-    vec3 rp = rs * (t3 - t4) / max(t3 + t4, vec3(RK_FLT_MIN));
+    RK_PRECISE vec3 rp = rs * (t3 - t4) / max(t3 + t4, vec3(RK_FLT_MIN));
     return clamp(0.5f * (rs + rp), vec3(0.0f), vec3(1.0f));
 }
 
@@ -358,7 +359,8 @@ RK_INLINE float rk_fresnel_glazing(float r, float panes)
     float x = rk_saturate(r);
     float n2 = 2.0f * clamp(panes, 0.0f, 1e6f);
     // 1 + (2N - 1) R as (1 - R) + 2N R: no cancellation when R -> 1 with few panes.
-    return n2 * x / max((1.0f - x) + n2 * x, RK_FLT_MIN);
+    RK_PRECISE float den = (1.0f - x) + n2 * x;
+    return n2 * x / max(den, RK_FLT_MIN);
 }
 
 /// rk_fresnel_glazing_sp: N panes with the series summed per polarisation,

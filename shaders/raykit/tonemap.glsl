@@ -292,11 +292,12 @@ RK_INLINE vec3 rk_pbr_neutral_inverse(vec3 display)
 /// rk_hable_curve: Hable's Uncharted 2 curve ((x (A x + C B) + D E) / (x (A x + B) + D F)) - E / F
 /// with A 0.15, B 0.50, C 0.10, D 0.20, E 0.02, F 0.30. Domain: x >= 0 (negative x clamped to 0,
 /// capped at 1e9). Range: 0 at 0 rising to 1 - E / F = 0.9333. Max error vs float64: 2.5e-7 over
-/// {0} and the floats in [1e-5, 1e4] (every 4th + refinement). Cost: 4 mad, 1 div.
+/// {0} and the floats in [1e-5, 1e4] (every 4th + refinement). Cost: 4 mad, 1 div, 1 min (the
+/// quotient is below 1, but a driver's division may be 2.5 ulp off: NVIDIA's left the range).
 RK_INLINE vec3 rk_hable_curve(vec3 x)
 {
     vec3 v = min(max(x, vec3(0.0f)), vec3(1e9f));
-    return (v * (0.15f * v + 0.05f) + 0.004f) / (v * (0.15f * v + 0.50f) + 0.06f) - 0.02f / 0.30f;
+    return min((v * (0.15f * v + 0.05f) + 0.004f) / (v * (0.15f * v + 0.50f) + 0.06f), vec3(1.0f)) - 0.02f / 0.30f;
 }
 
 /// rk_hable: Uncharted 2 filmic, curve(x) / curve(W) with linear white W = 11.2, clamped to [0, 1].
