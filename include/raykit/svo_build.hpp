@@ -785,18 +785,23 @@ struct TriFrame {
         return true;
     }
 
+    /// The shading normal at the polygon's centroid (gu, gv): interpolated normals are linear in the
+    /// barycentrics, so this is their area-weighted mean over the polygon (normalised once); the
+    /// face normal without vertex normals (or when the normal stream is not stored).
+    glm::vec3 normal_at(double gu, double gv) const
+    {
+        if (!(has_vn && want_normal)) return face;
+        glm::vec3 s(0.0f);
+        for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
+        const float l = glm::length(s);
+        return l > 1e-30f && std::isfinite(l) ? s / l : face;
+    }
+
     /// contribute() for a voxel whose full column square the triangle covers inside the voxel
     /// (untextured colour): the same sums as the general path with the polygon = the unit square.
     void contribute_full(int cu, int cv, Accum& acc) const
     {
-        const double gu = cu + 0.5, gv = cv + 0.5;
-        glm::vec3 nrm = face;
-        if (has_vn && want_normal) {
-            glm::vec3 s(0.0f);
-            for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
-            const float l = glm::length(s);
-            if (l > 1e-30f && std::isfinite(l)) nrm = s / l;
-        }
+        const glm::vec3 nrm = normal_at(cu + 0.5, cv + 0.5);
         const float total = static_cast<float>(scale);
         acc.area += total;
         acc.col += factor * total;
@@ -905,15 +910,7 @@ struct TriFrame {
         const double gu = cu + cx, gv = cv + cy;
         glm::vec4 col = factor;
         if (tex && want_color) col *= touch ? tex->sample(uv_at(gu, gv).x, uv_at(gu, gv).y, 0.0) : csum / static_cast<float>(area2);
-        // Normal at the polygon's centroid: interpolated normals are linear in the barycentrics, so
-        // this is their area-weighted mean over the polygon (normalised once).
-        glm::vec3 nrm = face;
-        if (has_vn && want_normal) {
-            glm::vec3 s(0.0f);
-            for (int k = 0; k < 3; ++k) s += vn[k] * static_cast<float>(bc[k] + bu[k] * gu + bv[k] * gv);
-            const float l = glm::length(s);
-            if (l > 1e-30f && std::isfinite(l)) nrm = s / l;
-        }
+        const glm::vec3 nrm = normal_at(gu, gv);
         const float total = static_cast<float>(area2 * scale);
         if (!touch) {
             acc.area += total;
