@@ -338,6 +338,8 @@ int main(int argc, char** argv)
                     const bool frag_hit = img[1][4 * i] + img[1][4 * i + 1] + img[1][4 * i + 2] > 0;  // cleared to black
                     differ += (word != 0u) != frag_hit;
                 }
+                std::printf("%-24s d%-2d %4dx%-4d compute vs fragment pass: %zu of %zu hit pixels differ\n", m.name.c_str(), depth, w, h,
+                            differ, cov_v);
                 if (double(differ) > 1e-3 * double(cov_v) + 4.0) {
                     std::fprintf(stderr, "bench_svo_gl: the compute pass hits %zu pixels other than the fragment pass\n", differ);
                     ok = false;
