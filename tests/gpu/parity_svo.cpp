@@ -222,3 +222,25 @@ TEST(GpuParity, PortableBitCountAndFindMsb)
     EXPECT_TRUE(r.ok) << r.mismatches << " mismatches, worst " << r.worst;
     EXPECT_EQ(r.non_finite, 0);
 }
+
+// The harness itself: a case whose two builds differ on purpose (RK_PARITY_SIDE is 1 in the shader,
+// 0 in C++) must report every row as a mismatch, and a tie rule must turn exactly the rows it
+// accepts into ties. This is the path the octahedral-seam rule of SvoCodecs takes on drivers that
+// flush denormals (NVIDIA), which llvmpipe never reaches.
+#define RK_PARITY_SIDE 0
+TEST(GpuParityHarness, MismatchesAndTiesAreCounted)
+{
+    parity::Case c = RK_PARITY("harness: builds that differ", "raykit/common.glsl", (dom::unit()), 2,
+                               o[0] = a[0]; o[1] = float(RK_PARITY_SIDE););
+    c.defines.push_back({"RK_PARITY_SIDE", "1"});
+    const parity::Result all = parity::run(c, parity::shader_dir(), 256);
+    EXPECT_FALSE(all.ok);
+    EXPECT_EQ(all.mismatches, all.rows);
+    EXPECT_EQ(all.ties, 0);
+    c.tie = [](const float* in, const float*, const float*) { return in[0] < 0.5f; };
+    const parity::Result tied = parity::run(c, parity::shader_dir(), 256);
+    EXPECT_GT(tied.ties, 0);
+    EXPECT_GT(tied.mismatches, 0);
+    EXPECT_EQ(tied.ties + tied.mismatches, tied.rows);
+}
+#undef RK_PARITY_SIDE
