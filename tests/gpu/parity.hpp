@@ -165,6 +165,16 @@ inline std::vector<float> run_gpu(const Case& c, const std::string& shader_dir, 
     return gpu;
 }
 
+/// Whether the current GL context is a software rasteriser (Mesa llvmpipe or softpipe, which CI
+/// runs): there bounds measured on its exact IEEE arithmetic and filtering apply; a hardware
+/// driver gets the allowances GL gives it.
+inline bool software_renderer()
+{
+    const GLubyte* r = glGetString(GL_RENDERER);
+    const std::string rend = r ? reinterpret_cast<const char*>(r) : "";
+    return rend.find("llvmpipe") != std::string::npos || rend.find("softpipe") != std::string::npos;
+}
+
 /// Whether the current GL context's shaders flush denormal floats to zero (GLSL allows it): a
 /// compute shader multiplies runtime values whose product, or whose factor, is denormal. Probed
 /// once per process (the parity tests share one context).

@@ -200,9 +200,7 @@ TEST(GpuParity, Bloom)
 // here: no hardware GPU in this test's CI).
 TEST(GpuBloom, ChainMatchesCpuReference)
 {
-    const GLubyte* renderer = glGetString(GL_RENDERER);
-    const std::string rend = renderer ? reinterpret_cast<const char*>(renderer) : "";
-    const bool software = rend.find("llvmpipe") != std::string::npos || rend.find("softpipe") != std::string::npos;
+    const bool software = parity::software_renderer();
     const double tol32 = software ? 2e-6 : 1e-2;
     const double tol16 = software ? 3e-3 : 1.5e-2;
     const int w = 160, h = 120;

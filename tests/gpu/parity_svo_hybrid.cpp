@@ -152,8 +152,11 @@ TEST(GpuHybrid, VoxelFaceAndTriangleShareDepthAndOccludeBothWays)
         EXPECT_GT(compared, 500);
         // Ours: the voxel pass writes the exact plane depth to a few 2^-24 (measured <= 4 on llvmpipe).
         EXPECT_LE(worst_voxel, 6.0) << s.name;
-        // Together: no more apart than the rasteriser's own error allows (llvmpipe measured <= 4 apart).
-        EXPECT_LE(worst, worst_raster + 6.0) << s.name;
+        // The rasteriser's side: llvmpipe, which CI runs, keeps the two within 6 x 2^-24 of each other
+        // (measured <= 4); GL lets a hardware rasteriser interpolate depth more coarsely, so there
+        // its own error against the reference is bounded instead (NVIDIA H100: 33.9 measured).
+        if (parity::software_renderer()) EXPECT_LE(worst, 6.0) << s.name;
+        else EXPECT_LE(worst_raster, 64.0) << s.name;
 
         // 2. Occlusion both ways, in both draw orders, against the float64 reference.
         const SvoHybridView hv = svo_hybrid_view(model, view, proj, s.conv);
