@@ -219,9 +219,6 @@ int main(int argc, char** argv)
                 return 1;
             }
             rkgl::SvoGlObject obj(tree, RAYKIT_SHADER_DIR);
-            const std::vector<uint32_t> gpu_words = tree.gpu_words();
-            const GLuint words_buf = rkgl::make_buffer(gpu_words.size() * 4, gpu_words.data());
-            const GLuint colors_buf = rkgl::make_buffer(tree.color.size() * 4, tree.color.data());
             for (const auto& [w, h] : sizes) {
                 rkgl::DepthTarget target(w, h);
                 const float fov = 0.8f;
@@ -246,8 +243,8 @@ int main(int argc, char** argv)
                         glUniform4ui(3, tree.depth, tree.depth, tree.desc_words, tree.gpu_brick_base_word());
                         glUniform4f(4, tree.root_min.x, tree.root_min.y, tree.root_min.z, tree.root_size);
                         glUniform2ui(5, GLuint(w), GLuint(h));
-                        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, words_buf);
-                        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, colors_buf);
+                        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, obj.words_buffer());
+                        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, obj.colors_buffer());
                         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, out_buf);
                         glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
                     } else {
@@ -321,22 +318,19 @@ int main(int argc, char** argv)
                 }
                 // Sanity: the voxels cover what the raster covers (a conservative surface voxelisation
                 // covers a little more: silhouettes grow by up to a voxel; thin limbs at depth 6 by a third).
-                size_t cov_r = 0, cov_v = 0;
+                // The compute pass must hit what the fragment pass hits (the same rays: pixel centres).
+                size_t cov_r = 0, cov_v = 0, differ = 0;
                 for (size_t i = 0; i + 3 < img[0].size(); i += 4) {
                     cov_r += img[0][i] + img[0][i + 1] + img[0][i + 2] > 0;
-                    cov_v += img[1][i] + img[1][i + 1] + img[1][i + 2] > 0;
+                    const bool frag_hit = img[1][i] + img[1][i + 1] + img[1][i + 2] > 0;  // cleared to black
+                    cov_v += frag_hit;
+                    uint32_t word;
+                    std::memcpy(&word, &compute_words[i / 4], 4);
+                    differ += (word != 0u) != frag_hit;
                 }
                 if (cov_r == 0 || double(cov_v) < 0.97 * double(cov_r) || double(cov_v) > 1.6 * double(cov_r) + 64.0) {
                     std::fprintf(stderr, "bench_svo_gl: coverage check failed: raster %zu px, voxels %zu px\n", cov_r, cov_v);
                     ok = false;
-                }
-                // The compute pass hits what the fragment pass hits (the same rays: pixel centres).
-                size_t differ = 0;
-                for (size_t i = 0; i < compute_words.size(); ++i) {
-                    uint32_t word;
-                    std::memcpy(&word, &compute_words[i], 4);
-                    const bool frag_hit = img[1][4 * i] + img[1][4 * i + 1] + img[1][4 * i + 2] > 0;  // cleared to black
-                    differ += (word != 0u) != frag_hit;
                 }
                 std::printf("%-24s d%-2d %4dx%-4d compute vs fragment pass: %zu of %zu hit pixels differ\n", m.name.c_str(), depth, w, h,
                             differ, cov_v);
@@ -364,8 +358,6 @@ int main(int argc, char** argv)
                         }
                 }
             }
-            glDeleteBuffers(1, &words_buf);
-            glDeleteBuffers(1, &colors_buf);
         }
     }
     glDeleteProgram(compute_prog);

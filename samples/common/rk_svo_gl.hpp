@@ -377,6 +377,11 @@ public:
     }
 
 
+    /// The buffers draw() binds: the octree words (gpu_words(), binding 0) and the colour stream
+    /// (binding 1), for passes of your own over the same tree (e.g. a compute pass).
+    GLuint words_buffer() const { return words_; }
+    GLuint colors_buffer() const { return colors_; }
+
 private:
     /// What draw() needs of the tree (kept by value: the caller's SvoTree may go away).
     struct TreeInfo {
