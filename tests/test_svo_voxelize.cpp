@@ -244,6 +244,17 @@ TEST(SvoVoxelize, EveryMeshDepths1To7)
         for (int d = 1; d <= 7; ++d) expect_surface_matches(nm.mesh, options(d), nm.name + " depth " + std::to_string(d));
 }
 
+// The packer finds bricks in parallel over blocks of 2^16 leaves, and a brick may straddle a
+// block boundary: a tree of many blocks must still hold exactly the oracle's voxels.
+TEST(SvoVoxelize, TreeOfManyPackBlocksMatchesTheOracle)
+{
+    SvoBuildOptions o = options(9);
+    o.threads = 2;
+    Built b;
+    expect_surface_matches(rkmesh::icosphere(3), o, "icosphere(3) depth 9", &b);
+    EXPECT_GT(b.tree.voxel_count, 8u << 16) << "fewer leaves than the test needs";
+}
+
 TEST(SvoVoxelize, AttributesAndThreadsDoNotChangeTheSet)
 {
     const auto m = rkmesh::textured_quad();

@@ -365,18 +365,41 @@ struct Prepared {
     }
 };
 
-/// Per-voxel accumulation while voxelising a chunk.
+/// Per-voxel accumulation while voxelising a chunk. Contributions with area are summed weighted
+/// by it; while a voxel has none, col/nrm hold the plain sums of its touch-only (zero-area)
+/// contributions, which the first contribution with area discards. 56 bytes: a chunk's array is
+/// touched at random, so its size is what the voxelising loop waits on.
 struct Accum {
-    float area;        // area-weighted sums (voxel^2 units)
+    float area;        // sum of areas (voxel^2 units)
+    float touch;       // number of touch-only contributions (used while area == 0)
     glm::vec4 col;
     glm::vec3 nrm;
-    float touch;       // touch-only contributions (zero area), each weight 1
-    glm::vec4 tcol;
-    glm::vec3 tnrm;
     float best_area;
     glm::vec3 best_nrm;  // the normal of the largest contribution (where opposite faces cancel)
     uint16_t best_mat;
     uint8_t used;
+
+    void add_area(float total, const glm::vec4& c, const glm::vec3& n, uint16_t mat)
+    {
+        if (total > 0.0f) {
+            if (!(area > 0.0f)) { col = glm::vec4(0.0f); nrm = glm::vec3(0.0f); }
+            area += total;
+            col += c * total;
+            nrm += n * total;
+            if (total > best_area) { best_area = total; best_mat = mat; best_nrm = n; }
+        }
+        used = 1;
+    }
+    void add_touch(const glm::vec4& c, const glm::vec3& n, uint16_t mat)
+    {
+        if (!(area > 0.0f)) {
+            touch += 1.0f;
+            col += c;
+            nrm += n;
+        }
+        if (best_area <= 0.0f && !used) best_mat = mat;
+        used = 1;
+    }
 };
 
 /// A leaf (or node) with its attributes, in Morton order.
@@ -706,6 +729,37 @@ inline int clip2(const float (*in)[2], int n, float (*out)[2], float a, float b,
     return m;
 }
 
+/// 2D clip of a convex polygon (u, v) to the strip 0 <= f <= 1, f = a u + b v + c, in one pass:
+/// the same polygon as clip2 to f >= 0 then to 1 - f >= 0 (a vertex on a boundary is kept, an
+/// edge crossing a boundary strictly gets the crossing point), with f evaluated once per vertex.
+inline int clip_slab(const float (*in)[2], int n, float (*out)[2], float a, float b, float c)
+{
+    float f[8];
+    for (int i = 0; i < n; ++i) f[i] = a * in[i][0] + b * in[i][1] + c;
+    int m = 0;
+    auto cross = [&](int i, int j, float level) {
+        const float t = (level - f[i]) / (f[j] - f[i]);
+        out[m][0] = in[i][0] + (in[j][0] - in[i][0]) * t;
+        out[m][1] = in[i][1] + (in[j][1] - in[i][1]) * t;
+        ++m;
+    };
+    for (int i = 0; i < n; ++i) {
+        const int j = i + 1 < n ? i + 1 : 0;
+        const float fp = f[i], fq = f[j];
+        if (fp >= 0.0f && fp <= 1.0f) { out[m][0] = in[i][0]; out[m][1] = in[i][1]; ++m; }
+        const bool c0 = (fp < 0.0f && fq > 0.0f) || (fp > 0.0f && fq < 0.0f);
+        const bool c1 = (fp < 1.0f && fq > 1.0f) || (fp > 1.0f && fq < 1.0f);
+        if (fq > fp) {  // rising: level 0 is met first
+            if (c0) cross(i, j, 0.0f);
+            if (c1) cross(i, j, 1.0f);
+        } else {
+            if (c1) cross(i, j, 1.0f);
+            if (c0) cross(i, j, 0.0f);
+        }
+    }
+    return m;
+}
+
 /// One triangle's attribute evaluation, set up once per (chunk, triangle). The part of the
 /// triangle inside a voxel is clipped in the projection onto the plane of the two non-dominant
 /// axes: the triangle is clipped to the voxel's column square once per column, then to the strip
@@ -802,12 +856,7 @@ struct TriFrame {
     void contribute_full(int cu, int cv, Accum& acc) const
     {
         const glm::vec3 nrm = normal_at(cu + 0.5, cv + 0.5);
-        const float total = static_cast<float>(scale);
-        acc.area += total;
-        acc.col += factor * total;
-        acc.nrm += nrm * total;
-        if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; acc.best_nrm = nrm; }
-        acc.used = 1;
+        acc.add_area(static_cast<float>(scale), factor, nrm, tri->material);
     }
 
     glm::dvec2 uv_at(double gu, double gv) const
@@ -858,9 +907,8 @@ struct TriFrame {
             contribute_full(cu, cv, acc);
             return;
         }
-        float s1[10][2], poly[12][2];
-        int n = clip2(sq, nsq, s1, a, b, c0);
-        n = clip2(s1, n, poly, -a, -b, 1.0f - c0);
+        float poly[16][2];
+        const int n = clip_slab(sq, nsq, poly, a, b, c0);
         // Fan: projected areas, centroid.
         double area2 = 0.0, cx = 0.0, cy = 0.0;
         glm::vec4 csum(0.0f);
@@ -912,18 +960,8 @@ struct TriFrame {
         if (tex && want_color) col *= touch ? tex->sample(uv_at(gu, gv).x, uv_at(gu, gv).y, 0.0) : csum / static_cast<float>(area2);
         const glm::vec3 nrm = normal_at(gu, gv);
         const float total = static_cast<float>(area2 * scale);
-        if (!touch) {
-            acc.area += total;
-            acc.col += col * total;
-            acc.nrm += nrm * total;
-            if (total > acc.best_area) { acc.best_area = total; acc.best_mat = tri->material; acc.best_nrm = nrm; }
-        } else {
-            acc.touch += 1.0f;
-            acc.tcol += col;
-            acc.tnrm += nrm;
-            if (acc.best_area <= 0.0f && !acc.used) acc.best_mat = tri->material;
-        }
-        acc.used = 1;
+        if (!touch) acc.add_area(total, col, nrm, tri->material);
+        else acc.add_touch(col, nrm, tri->material);
     }
 };
 
@@ -937,7 +975,9 @@ struct ChunkWork {
 /// (c+1) 2^shift] per axis) within [lo, hi] (cells, inclusive) whose closed box the closed
 /// triangle v overlaps: columns along the triangle's dominant axis, three edge axes per column,
 /// the plane and six edge axes per cell (skipped in columns inside the triangle's shadow, where they
-/// cannot separate), all exact (the same 13 axes as svo_triangle_box_overlap).
+/// cannot separate), all exact (the same 13 axes as svo_triangle_box_overlap). A box's projection
+/// on an axis is the projection of its corner plus a constant per cell size, and steps by a
+/// constant from cell to cell along a column, so each per-cell test is an i128 add and two compares.
 template <class F>
 inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int64_t lo_in[3], const int64_t hi_in[3], F&& f)
 {
@@ -953,34 +993,57 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
     }
     const SatTriangle T(v);
     const i128 (&n)[3] = T.n;
-    const i128 d = T.d;
     const double nd[3] = {static_cast<double>(n[0]), static_cast<double>(n[1]), static_cast<double>(n[2])};
     int w = 0;
     for (int a = 1; a < 3; ++a)
         if (std::fabs(nd[a]) > std::fabs(nd[w])) w = a;
     const int u = (w + 1) % 3, vv = (w + 2) % 3;
-    auto axis_ok = [&](const SatTriangle::Axis& A, const int64_t bmin[3]) { return SatTriangle::axis_ok(A, bmin, S); };
-    const auto& ax = T.ax;
+    // Per axis: the box [b, b + S] projects to [p(b) + olo, p(b) + ohi] with p(b) = au b[ka] +
+    // aw b[kb]; it overlaps the triangle's interval iff tlo - ohi <= p(b) <= thi - olo, and lies
+    // inside it iff tlo - olo <= p(b) <= thi - ohi.
+    struct Lim { i128 lo, hi, in_lo, in_hi; i128 cu, cv, cw; };  // cu/cv/cw: p's coefficient along u, vv, w
+    auto limits = [&](const SatTriangle::Axis& A) {
+        const i128 olo = (i128)std::min<int64_t>(A.au, 0) * S + (i128)std::min<int64_t>(A.aw, 0) * S;
+        const i128 ohi = (i128)std::max<int64_t>(A.au, 0) * S + (i128)std::max<int64_t>(A.aw, 0) * S;
+        auto coef = [&](int X) { return (i128)(A.ka == X ? A.au : 0) + (i128)(A.kb == X ? A.aw : 0); };
+        return Lim{A.tlo - ohi, A.thi - olo, A.tlo - olo, A.thi - ohi, coef(u), coef(vv), coef(w)};
+    };
+    // Column axes (e_i x unit_w: no w component) and cell axes (e_i x unit_u, e_i x unit_vv).
+    Lim col[3], cell[6];
+    for (int i = 0; i < 3; ++i) {
+        col[i] = limits(T.ax[w][i]);
+        cell[i] = limits(T.ax[u][i]);
+        cell[3 + i] = limits(T.ax[vv][i]);
+    }
+    // The plane: the box's n-projection is [n.b + plo, n.b + phi]; it touches d iff
+    // d - phi <= n.b <= d - plo.
+    i128 plo = 0, phi = 0;
+    for (int a = 0; a < 3; ++a) {
+        const i128 ns = n[a] * S;
+        (ns < 0 ? plo : phi) += ns;
+    }
+    const i128 plane_lo = T.d - phi, plane_hi = T.d - plo;
+    const i128 nstep = n[w] * S;
     const double inv_s = 1.0 / static_cast<double>(S);
-    const double dd = static_cast<double>(d), inv_nw = 1.0 / nd[w];
+    const double dd = static_cast<double>(T.d), inv_nw = 1.0 / nd[w];
     for (int64_t cu = lo[u]; cu <= hi[u]; ++cu) {
+        const int64_t bu = cu * S;
         for (int64_t cv = lo[vv]; cv <= hi[vv]; ++cv) {
-            int64_t bmin[3];
-            bmin[u] = cu * S;
-            bmin[vv] = cv * S;
-            bmin[w] = 0;
+            const int64_t bv = cv * S;
             // The three edge axes perpendicular to the dominant axis depend on the column only.
-            if (!axis_ok(ax[w][0], bmin) || !axis_ok(ax[w][1], bmin) || !axis_ok(ax[w][2], bmin)) continue;
-            // A column whose square lies inside the triangle's projection: every cell the plane
-            // passes through overlaps the triangle, so the six per-cell edge axes are skipped.
-            const bool inside = SatTriangle::axis_inside(ax[w][0], bmin, S) && SatTriangle::axis_inside(ax[w][1], bmin, S) &&
-                                SatTriangle::axis_inside(ax[w][2], bmin, S);
+            bool inside = true, out = false;
+            for (int i = 0; i < 3; ++i) {
+                const i128 p = col[i].cu * bu + col[i].cv * bv;
+                out = out || p < col[i].lo || p > col[i].hi;
+                inside = inside && p >= col[i].in_lo && p <= col[i].in_hi;
+            }
+            if (out) continue;
             // The plane's w range over the column's square (double), plus one cell of margin; the
             // exact plane test below decides.
             double wlo = INFINITY, whi = -INFINITY;
             for (int cc = 0; cc < 4; ++cc) {
-                const double pu = static_cast<double>(bmin[u] + ((cc & 1) ? S : 0));
-                const double pv = static_cast<double>(bmin[vv] + ((cc & 2) ? S : 0));
+                const double pu = static_cast<double>(bu + ((cc & 1) ? S : 0));
+                const double pv = static_cast<double>(bv + ((cc & 2) ? S : 0));
                 const double pw = (dd - nd[u] * pu - nd[vv] * pv) * inv_nw;
                 wlo = std::min(wlo, pw);
                 whi = std::max(whi, pw);
@@ -990,16 +1053,28 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             int64_t k0 = lo[w], k1 = hi[w];
             if (std::isfinite(wlo) && std::isfinite(whi) && std::fabs(wlo) < 1e15 && std::fabs(whi) < 1e15) {
                 const double slack = 1e-6 + (std::fabs(wlo) + std::fabs(whi)) * inv_s * 1e-12;
-                k0 = std::max<int64_t>(k0, static_cast<int64_t>(std::ceil(wlo * inv_s - slack)) - 1);
-                k1 = std::min<int64_t>(k1, static_cast<int64_t>(std::floor(whi * inv_s + slack)));
+                const double a0 = wlo * inv_s - slack, a1 = whi * inv_s + slack;  // |a| < 2^50: exact floor/ceil via int64
+                int64_t c0 = static_cast<int64_t>(a0), c1 = static_cast<int64_t>(a1);
+                if (static_cast<double>(c0) < a0) ++c0;  // ceil
+                if (static_cast<double>(c1) > a1) --c1;  // floor
+                k0 = std::max<int64_t>(k0, c0 - 1);
+                k1 = std::min<int64_t>(k1, c1);
             }
-            for (int64_t cw = k0; cw <= k1; ++cw) {
-                bmin[w] = cw * S;
-                if (!T.plane_ok(bmin, S)) continue;
+            if (k0 > k1) continue;
+            const int64_t bw0 = k0 * S;
+            i128 nb = n[u] * bu + n[vv] * bv + n[w] * bw0;
+            i128 eb[6] = {0, 0, 0, 0, 0, 0};
+            if (!inside)
+                for (int i = 0; i < 6; ++i) eb[i] = cell[i].cu * bu + cell[i].cv * bv + cell[i].cw * bw0;
+            for (int64_t cw = k0; cw <= k1; ++cw, nb += nstep) {
+                bool ok = nb >= plane_lo && nb <= plane_hi;
                 if (!inside) {
-                    if (!axis_ok(ax[u][0], bmin) || !axis_ok(ax[u][1], bmin) || !axis_ok(ax[u][2], bmin)) continue;
-                    if (!axis_ok(ax[vv][0], bmin) || !axis_ok(ax[vv][1], bmin) || !axis_ok(ax[vv][2], bmin)) continue;
+                    for (int i = 0; i < 6; ++i) {
+                        ok = ok && eb[i] >= cell[i].lo && eb[i] <= cell[i].hi;
+                        eb[i] += cell[i].cw * S;
+                    }
                 }
+                if (!ok) continue;
                 int64_t c[3];
                 c[u] = cu;
                 c[vv] = cv;
@@ -1042,10 +1117,7 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
             } else {
                 // No attributes (or a triangle too thin for the double-precision frame): occupancy
                 // only, with the material's colour as a touch sample.
-                if (attrs) A.tcol += P.materials[tri.material].base_color;
-                if (attrs && !A.used) A.best_mat = tri.material;
-                A.used = 1;
-                A.touch += 1.0f;
+                A.add_touch(attrs ? P.materials[tri.material].base_color : glm::vec4(0.0f), glm::vec3(0.0f), tri.material);
             }
         });
     }
@@ -1053,6 +1125,9 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
     const SrgbTables& srgb = SrgbTables::get();
     const bool want_normal = (P.attributes & RK_SVO_ATTR_NORMAL) != 0;
     const uint64_t chunk_key = morton(org[0] >> cs, org[1] >> cs, org[2] >> cs) << (3 * cs);
+    size_t count = 0;
+    for (size_t wi = 0; wi < (cells + 63) / 64; ++wi) count += static_cast<size_t>(__builtin_popcountll(W.touched[wi]));
+    out.reserve(out.size() + count);
     for (size_t wi = 0; wi < (cells + 63) / 64; ++wi) {
         for (uint64_t bits = W.touched[wi]; bits; bits &= bits - 1) {
             const uint32_t li = static_cast<uint32_t>(wi * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
@@ -1067,8 +1142,8 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
                 l.normal = want_normal ? rk_svo_pack_normal(glm::length(A.nrm) > 1e-3f * A.area ? A.nrm : A.best_nrm) : 0u;
             } else {
                 l.weight = 0.0f;
-                l.color = srgb.pack(A.tcol / std::max(A.touch, 1.0f));
-                l.normal = want_normal ? rk_svo_pack_normal(A.tnrm) : 0u;
+                l.color = srgb.pack(A.col / std::max(A.touch, 1.0f));
+                l.normal = want_normal ? rk_svo_pack_normal(A.nrm) : 0u;
             }
             l.material = A.best_mat;
             out.push_back(l);

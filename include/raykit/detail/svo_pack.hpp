@@ -38,10 +38,9 @@ struct Sum {
             if (mw[i] > mw[b]) b = i;
         best_mat = mat[b];
     }
-    void add_leaf(const Leaf& l)
+    /// Adds leaf l whose colour and normal words decode to c and nn.
+    void add_leaf(const Leaf& l, const glm::vec4& c, const glm::vec3& nn)
     {
-        const glm::vec4 c = SrgbTables::get().unpack(l.color);
-        const glm::vec3 nn = rk_svo_unpack_normal(l.normal);
         col += c * l.weight;
         ucol += c;
         nrm += nn * l.weight;
@@ -89,14 +88,42 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     t.level_nodes.assign(depth + 1u, 0u);
     t.voxel_count = leaves.size();
     // Structure, bottom-up: bricks (key, first leaf) then descriptor levels (key, mask, first child).
+    // Bricks are the runs of leaves with one key >> bs, found in parallel over blocks of leaves (a
+    // block owns the bricks that start in it), each with its voxel mask.
     std::vector<uint64_t> brick_key;
     std::vector<uint64_t> brick_first;  // leaf index where the brick starts
+    std::vector<uint64_t> brick_mask;   // bit i: voxel i of the brick
     const uint32_t bs = 3u * b;
-    for (size_t i = 0; i < leaves.size(); ++i)
-        if (i == 0 || (leaves[i].key >> bs) != (leaves[i - 1].key >> bs)) {
-            brick_key.push_back(leaves[i].key >> bs);
-            brick_first.push_back(i);
+    {
+        const size_t nl = leaves.size(), lblock = size_t(1) << 16, nblk = (nl + lblock - 1) / lblock;
+        struct Run { std::vector<uint64_t> key, first, mask; };
+        std::vector<Run> runs(nblk);
+        parallel_for(opt, nblk, [&](size_t k) {
+            const size_t e = std::min(nl, (k + 1) * lblock);
+            size_t i = k * lblock;
+            while (i < e && i > 0 && (leaves[i].key >> bs) == (leaves[i - 1].key >> bs)) ++i;  // an earlier block's brick
+            Run& R = runs[k];
+            while (i < e) {
+                const uint64_t bk = leaves[i].key >> bs;
+                R.key.push_back(bk);
+                R.first.push_back(i);
+                uint64_t m = 0;
+                for (; i < nl && (leaves[i].key >> bs) == bk; ++i) m |= uint64_t(1) << (leaves[i].key & ((uint64_t(1) << bs) - 1));
+                R.mask.push_back(m);
+            }
+        });
+        size_t total = 0;
+        for (const Run& R : runs) total += R.key.size();
+        brick_key.reserve(total);
+        brick_first.reserve(total + 1);
+        brick_mask.reserve(total);
+        for (Run& R : runs) {
+            brick_key.insert(brick_key.end(), R.key.begin(), R.key.end());
+            brick_first.insert(brick_first.end(), R.first.begin(), R.first.end());
+            brick_mask.insert(brick_mask.end(), R.mask.begin(), R.mask.end());
+            R = Run{};
         }
+    }
     brick_first.push_back(leaves.size());
     const uint64_t nb = brick_key.size();
     if (nb >= (1ull << 31)) return st.fail(SvoError::too_large, "more than 2^31 bricks");
@@ -212,11 +239,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     {
         t.brick_base.resize(nb);
         for (uint64_t j = 0; j < nb; ++j) {
-            uint32_t lo = 0, hi = 0;
-            for (uint64_t i = brick_first[j]; i < brick_first[j + 1]; ++i) {
-                const uint32_t bit = static_cast<uint32_t>(leaves[i].key & ((1ull << bs) - 1));
-                if (bit < 32) lo |= 1u << bit; else hi |= 1u << (bit - 32);
-            }
+            const uint32_t lo = static_cast<uint32_t>(brick_mask[j]), hi = static_cast<uint32_t>(brick_mask[j] >> 32);
             t.words[desc_words + 2 * j] = lo;
             t.words[desc_words + 2 * j + 1] = hi;
             t.brick_base[j] = static_cast<uint32_t>(attr) | (shared ? RK_SVO_BRICK_SHARED_SUB : 0u);
@@ -239,6 +262,10 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     const uint64_t block = 4096;
     parallel_for(opt, static_cast<size_t>((nb + block - 1) / block), [&](size_t blk) {
         const uint64_t j_end = std::min<uint64_t>(nb, (blk + 1) * block);
+        const SrgbTables& srgb = SrgbTables::get();
+        uint32_t last_code = 0;
+        glm::vec3 last_normal(0.0f);
+        bool have_last = false;
         for (uint64_t j = blk * block; j < j_end; ++j) {
             const glm::uvec2 m(t.words[desc_words + 2 * j], t.words[desc_words + 2 * j + 1]);
             const uint64_t base = t.brick_base[j] & ~RK_SVO_BRICK_SHARED_SUB;
@@ -251,8 +278,14 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
                 const uint64_t part = b == 2 ? (leaves[i].key >> 3) : leaves[i].key;
                 Sum p;
                 for (; i < brick_first[j + 1] && (b == 2 ? (leaves[i].key >> 3) : leaves[i].key) == part; ++i) {
-                    put_leaf_attr(t, base + subs + (i - brick_first[j]), leaves[i]);
-                    p.add_leaf(leaves[i]);
+                    const Leaf& l = leaves[i];
+                    put_leaf_attr(t, base + subs + (i - brick_first[j]), l);
+                    if (l.normal != last_code || !have_last) {  // neighbours on one face share a normal word
+                        last_code = l.normal;
+                        last_normal = rk_svo_unpack_normal(l.normal);
+                        have_last = true;
+                    }
+                    p.add_leaf(l, srgb.unpack(l.color), last_normal);
                 }
                 if (b == 2 && !shared) put_attr(t, base + np, p);
                 ++np;
