@@ -875,16 +875,33 @@ struct TriFrame {
             col_v = cv;
             // Inside: every corner of the square on the inner side of every edge (barycentrics >= 0,
             // in double): then triangle ∩ square is the square itself and needs no clipping.
-            col_inside = true;
-            for (int c = 0; c < 4 && col_inside; ++c) {
+            bool cuts[3] = {false, false, false};  // edge k has a corner of the square outside
+            for (int c = 0; c < 4; ++c) {
                 const double qu = cu + double(c & 1), qv = cv + double(c >> 1);
-                for (int k = 0; k < 3; ++k) col_inside = col_inside && bc[k] + bu[k] * qu + bv[k] * qv >= 0.0;
+                for (int k = 0; k < 3; ++k) cuts[k] = cuts[k] || !(bc[k] + bu[k] * qu + bv[k] * qv >= 0.0);
             }
+            const int ncuts = int(cuts[0]) + int(cuts[1]) + int(cuts[2]);
+            col_inside = ncuts == 0;
             if (col_inside) {
                 static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
                 std::memcpy(sq, unit, sizeof unit);
                 nsq = 4;
+            } else if (ncuts < 3) {
+                // One or two edges cross the square: clip the square to their half-planes.
+                float b1[8][2];
+                static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+                const float(*src)[2] = unit;
+                int n = 4, done = 0;
+                for (int k = 0; k < 3; ++k) {
+                    if (!cuts[k]) continue;
+                    float(*dst)[2] = ++done == ncuts ? sq : b1;
+                    n = clip2(src, n, dst, static_cast<float>(bu[k]), static_cast<float>(bv[k]),
+                              static_cast<float>(bc[k] + bu[k] * cu + bv[k] * cv));
+                    src = dst;
+                }
+                nsq = n;
             } else {
+                // All three: the triangle is small against the square; clip it to the square.
                 float tri2[3][2], b1[8][2], b2[8][2];
                 for (int k = 0; k < 3; ++k) {
                     tri2[k][0] = static_cast<float>(pu[k] - cu);
@@ -1001,11 +1018,11 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
     // Per axis: the box [b, b + S] projects to [p(b) + olo, p(b) + ohi] with p(b) = au b[ka] +
     // aw b[kb]; it overlaps the triangle's interval iff tlo - ohi <= p(b) <= thi - olo, and lies
     // inside it iff tlo - olo <= p(b) <= thi - ohi.
-    struct Lim { i128 lo, hi, in_lo, in_hi; i128 cu, cv, cw; };  // cu/cv/cw: p's coefficient along u, vv, w
+    struct Lim { i128 lo, hi, in_lo, in_hi; int64_t cu, cv, cw; };  // cu/cv/cw: p's coefficient along u, vv, w (|.| < 2^41)
     auto limits = [&](const SatTriangle::Axis& A) {
         const i128 olo = (i128)std::min<int64_t>(A.au, 0) * S + (i128)std::min<int64_t>(A.aw, 0) * S;
         const i128 ohi = (i128)std::max<int64_t>(A.au, 0) * S + (i128)std::max<int64_t>(A.aw, 0) * S;
-        auto coef = [&](int X) { return (i128)(A.ka == X ? A.au : 0) + (i128)(A.kb == X ? A.aw : 0); };
+        auto coef = [&](int X) { return (A.ka == X ? A.au : 0) + (A.kb == X ? A.aw : 0); };  // ka != kb: one term
         return Lim{A.tlo - ohi, A.thi - olo, A.tlo - olo, A.thi - ohi, coef(u), coef(vv), coef(w)};
     };
     // Column axes (e_i x unit_w: no w component) and cell axes (e_i x unit_u, e_i x unit_vv).
@@ -1033,7 +1050,7 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             // The three edge axes perpendicular to the dominant axis depend on the column only.
             bool inside = true, out = false;
             for (int i = 0; i < 3; ++i) {
-                const i128 p = col[i].cu * bu + col[i].cv * bv;
+                const i128 p = (i128)col[i].cu * bu + (i128)col[i].cv * bv;
                 out = out || p < col[i].lo || p > col[i].hi;
                 inside = inside && p >= col[i].in_lo && p <= col[i].in_hi;
             }
@@ -1065,13 +1082,13 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
             i128 nb = n[u] * bu + n[vv] * bv + n[w] * bw0;
             i128 eb[6] = {0, 0, 0, 0, 0, 0};
             if (!inside)
-                for (int i = 0; i < 6; ++i) eb[i] = cell[i].cu * bu + cell[i].cv * bv + cell[i].cw * bw0;
+                for (int i = 0; i < 6; ++i) eb[i] = (i128)cell[i].cu * bu + (i128)cell[i].cv * bv + (i128)cell[i].cw * bw0;
             for (int64_t cw = k0; cw <= k1; ++cw, nb += nstep) {
                 bool ok = nb >= plane_lo && nb <= plane_hi;
                 if (!inside) {
                     for (int i = 0; i < 6; ++i) {
                         ok = ok && eb[i] >= cell[i].lo && eb[i] <= cell[i].hi;
-                        eb[i] += cell[i].cw * S;
+                        eb[i] += (i128)cell[i].cw * S;
                     }
                 }
                 if (!ok) continue;

@@ -73,8 +73,15 @@ inline void put_leaf_attr(SvoTree& t, uint64_t i, const Leaf& l)
     if (!t.material.empty()) t.material[i] = l.material;
 }
 
-/// Packs Morton-sorted, unique leaves (keys at `depth`) into `t`.
-inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, uint32_t depth, uint32_t attributes, uint32_t pointer_bits,
+/// A run of Morton-sorted leaves holding whole bricks (a chunk's output, or all leaves).
+struct LeafSpan {
+    const Leaf* p;
+    size_t n;
+};
+
+/// Packs Morton-sorted, unique leaves (keys at `depth`), given as consecutive spans that each hold
+/// whole bricks, into `t`.
+inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans, uint32_t depth, uint32_t attributes, uint32_t pointer_bits,
                  const std::vector<SvoMaterial>& materials, SvoTree& t, Memory& mem, SvoStatus& st)
 {
     const uint32_t b = rk_svo_brick_levels(depth);
@@ -86,45 +93,56 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
     t.attributes = attributes;
     t.pointer_bits = pointer_bits;
     t.level_nodes.assign(depth + 1u, 0u);
-    t.voxel_count = leaves.size();
+    size_t nleaves = 0;
+    for (const LeafSpan& sp : spans) nleaves += sp.n;
+    t.voxel_count = nleaves;
     // Structure, bottom-up: bricks (key, first leaf) then descriptor levels (key, mask, first child).
-    // Bricks are the runs of leaves with one key >> bs, found in parallel over blocks of leaves (a
-    // block owns the bricks that start in it), each with its voxel mask.
+    // Bricks are the runs of leaves with one key >> bs, found in parallel over blocks of each span
+    // (a block owns the bricks that start in it), each with its voxel mask.
     std::vector<uint64_t> brick_key;
-    std::vector<uint64_t> brick_first;  // leaf index where the brick starts
-    std::vector<uint64_t> brick_mask;   // bit i: voxel i of the brick
+    std::vector<const Leaf*> brick_leaf;  // the brick's first leaf
+    std::vector<uint8_t> brick_n;         // its leaf count - 1 (1..64 leaves)
+    std::vector<uint64_t> brick_mask;     // bit i: voxel i of the brick
     const uint32_t bs = 3u * b;
     {
-        const size_t nl = leaves.size(), lblock = size_t(1) << 16, nblk = (nl + lblock - 1) / lblock;
-        struct Run { std::vector<uint64_t> key, first, mask; };
-        std::vector<Run> runs(nblk);
-        parallel_for(opt, nblk, [&](size_t k) {
-            const size_t e = std::min(nl, (k + 1) * lblock);
-            size_t i = k * lblock;
-            while (i < e && i > 0 && (leaves[i].key >> bs) == (leaves[i - 1].key >> bs)) ++i;  // an earlier block's brick
+        const size_t lblock = size_t(1) << 16;
+        struct Task { const Leaf* p; size_t n, s, e; };  // span p[0..n), block [s, e)
+        std::vector<Task> tasks;
+        for (const LeafSpan& sp : spans)
+            for (size_t s0 = 0; s0 < sp.n; s0 += lblock) tasks.push_back({sp.p, sp.n, s0, std::min(sp.n, s0 + lblock)});
+        struct Run { std::vector<uint64_t> key, mask; std::vector<const Leaf*> leaf; std::vector<uint8_t> n; };
+        std::vector<Run> runs(tasks.size());
+        parallel_for(opt, tasks.size(), [&](size_t k) {
+            const Task& T = tasks[k];
+            const Leaf* L = T.p;
+            size_t i = T.s;
+            while (i < T.e && i > 0 && (L[i].key >> bs) == (L[i - 1].key >> bs)) ++i;  // an earlier block's brick
             Run& R = runs[k];
-            while (i < e) {
-                const uint64_t bk = leaves[i].key >> bs;
-                R.key.push_back(bk);
-                R.first.push_back(i);
+            while (i < T.e) {
+                const uint64_t bk = L[i].key >> bs;
+                const size_t first = i;
                 uint64_t m = 0;
-                for (; i < nl && (leaves[i].key >> bs) == bk; ++i) m |= uint64_t(1) << (leaves[i].key & ((uint64_t(1) << bs) - 1));
+                for (; i < T.n && (L[i].key >> bs) == bk; ++i) m |= uint64_t(1) << (L[i].key & ((uint64_t(1) << bs) - 1));
+                R.key.push_back(bk);
+                R.leaf.push_back(L + first);
+                R.n.push_back(static_cast<uint8_t>(i - first - 1));
                 R.mask.push_back(m);
             }
         });
         size_t total = 0;
         for (const Run& R : runs) total += R.key.size();
         brick_key.reserve(total);
-        brick_first.reserve(total + 1);
+        brick_leaf.reserve(total);
+        brick_n.reserve(total);
         brick_mask.reserve(total);
         for (Run& R : runs) {
             brick_key.insert(brick_key.end(), R.key.begin(), R.key.end());
-            brick_first.insert(brick_first.end(), R.first.begin(), R.first.end());
+            brick_leaf.insert(brick_leaf.end(), R.leaf.begin(), R.leaf.end());
+            brick_n.insert(brick_n.end(), R.n.begin(), R.n.end());
             brick_mask.insert(brick_mask.end(), R.mask.begin(), R.mask.end());
             R = Run{};
         }
     }
-    brick_first.push_back(leaves.size());
     const uint64_t nb = brick_key.size();
     if (nb >= (1ull << 31)) return st.fail(SvoError::too_large, "more than 2^31 bricks");
     struct Level {
@@ -150,7 +168,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
         }
     }
     // An empty tree (no leaf) is a root with an empty mask: a descriptor, or a brick when depth <= 2.
-    if (leaves.empty()) {
+    if (nleaves == 0) {
         t.level_nodes[0] = 1;
         if (top > 0) {
             t.words.assign(1, 0u);
@@ -245,10 +263,10 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
             t.brick_base[j] = static_cast<uint32_t>(attr) | (shared ? RK_SVO_BRICK_SHARED_SUB : 0u);
             const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(glm::uvec2(lo, hi)))) : 0u;
             if (b == 2) t.level_nodes[top + 1] += subs;
-            attr += (shared ? 0u : subs) + (brick_first[j + 1] - brick_first[j]);
+            attr += (shared ? 0u : subs) + brick_n[j] + 1u;
             if (attr > attr_limit) return st.fail(SvoError::too_large, "more than 2^31 attribute entries");
         }
-        t.level_nodes[depth] = leaves.size();
+        t.level_nodes[depth] = nleaves;
     }
     t.attr_count = attr;
     const uint32_t streams = static_cast<uint32_t>(bitCount(attributes & (RK_SVO_ATTR_COLOR | RK_SVO_ATTR_NORMAL | RK_SVO_ATTR_MATERIAL)));
@@ -274,12 +292,14 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<Leaf>& leaves, ui
             // voxels (b = 1), then the brick.
             Sum brick;
             uint32_t np = 0;
-            for (uint64_t i = brick_first[j]; i < brick_first[j + 1];) {
-                const uint64_t part = b == 2 ? (leaves[i].key >> 3) : leaves[i].key;
+            const Leaf* const bl = brick_leaf[j];
+            const uint32_t bn = brick_n[j] + 1u;
+            for (uint32_t i = 0; i < bn;) {
+                const uint64_t part = b == 2 ? (bl[i].key >> 3) : bl[i].key;
                 Sum p;
-                for (; i < brick_first[j + 1] && (b == 2 ? (leaves[i].key >> 3) : leaves[i].key) == part; ++i) {
-                    const Leaf& l = leaves[i];
-                    put_leaf_attr(t, base + subs + (i - brick_first[j]), l);
+                for (; i < bn && (b == 2 ? (bl[i].key >> 3) : bl[i].key) == part; ++i) {
+                    const Leaf& l = bl[i];
+                    put_leaf_attr(t, base + subs + i, l);
                     if (l.normal != last_code || !have_last) {  // neighbours on one face share a normal word
                         last_code = l.normal;
                         last_normal = rk_svo_unpack_normal(l.normal);
@@ -323,8 +343,7 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
         if (stats_out) *stats_out = stats;
         return false;
     }
-    double estimated_voxels = 0;
-    stats.estimated_peak_bytes = estimate(P, opt, mesh, &estimated_voxels);
+    stats.estimated_peak_bytes = estimate(P, opt, mesh);
     if (opt.memory_budget && stats.estimated_peak_bytes > opt.memory_budget) {
         if (stats_out) *stats_out = stats;
         char msg[200];
@@ -398,20 +417,19 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
     const size_t nchunks = chunk_start.size() - 1;
     std::vector<uint32_t> tri_ids(pairs.size());
     for (size_t i = 0; i < pairs.size(); ++i) tri_ids[i] = pairs[i].second;
-    // Voxelise the chunks in parallel, in batches; each batch's outputs are appended in chunk
-    // Morton order (= voxel Morton order) and freed, so the leaves are held once, not twice.
-    std::vector<Leaf> leaves;
-    leaves.reserve(static_cast<size_t>(std::min<double>(estimated_voxels, 1e10)));  // untouched pages cost nothing
+    // Voxelise the chunks in parallel, in batches (for the memory budget's checks). Each chunk's
+    // leaves stay in their own vector: the chunks are in Morton order, so together they are the
+    // sorted leaves, and the packer reads them in place (no copy into one array).
+    std::vector<std::vector<Leaf>> chunk_leaves(nchunks);
     std::vector<std::unique_ptr<ChunkWork>> work_pool;
     size_t work_created = 0;
     std::mutex pool_mutex;
     std::atomic<size_t> done{0};
     std::atomic<bool> over_budget{false};
     const size_t batch = 8192;
-    std::vector<std::vector<Leaf>> chunk_out;
+    uint64_t nleaves = 0;
     for (size_t b0 = 0; b0 < nchunks && !cancelled && !over_budget; b0 += batch) {
         const size_t nb_chunks = std::min(batch, nchunks - b0);
-        chunk_out.assign(nb_chunks, std::vector<Leaf>());
         std::atomic<uint64_t> batch_leaves{0};
         parallel_for(opt, nb_chunks, [&](size_t ci) {
             if (cancelled || over_budget) return;
@@ -428,8 +446,8 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
             for (uint32_t l = 0; l < chunk_level; ++l)
                 for (int a = 0; a < 3; ++a) org[a] |= static_cast<uint32_t>((key >> (3 * l + static_cast<uint32_t>(a))) & 1u) << l;
             for (int a = 0; a < 3; ++a) org[a] <<= cs;
-            voxelize_chunk(P, tri_ids.data() + chunk_start[c], chunk_start[c + 1] - chunk_start[c], org, cs, *W, chunk_out[ci]);
-            const uint64_t tot = (batch_leaves += chunk_out[ci].size()) + leaves.size();
+            voxelize_chunk(P, tri_ids.data() + chunk_start[c], chunk_start[c + 1] - chunk_start[c], org, cs, *W, chunk_leaves[c]);
+            const uint64_t tot = (batch_leaves += chunk_leaves[c].size());
             if (opt.memory_budget && mem.live + tot * sizeof(Leaf) > opt.memory_budget) over_budget = true;
             {
                 std::lock_guard<std::mutex> lock(pool_mutex);
@@ -439,13 +457,10 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
             if ((d & 63u) == 0 || d == nchunks) report(0.05f + 0.75f * static_cast<float>(d) / static_cast<float>(nchunks), "voxelizing");
         });
         const uint64_t pool_bytes = work_created * (uint64_t(1) << (3 * cs)) * sizeof(Accum);
-        // Peak of this batch: the leaves so far, the batch's outputs and the chunk accumulators.
-        if (!mem.add(pool_bytes + (leaves.size() + batch_leaves) * sizeof(Leaf), st, "voxelizing")) return finish(false);
-        for (std::vector<Leaf>& v : chunk_out) {
-            leaves.insert(leaves.end(), v.begin(), v.end());
-            std::vector<Leaf>().swap(v);
-        }
-        mem.sub(pool_bytes + leaves.size() * sizeof(Leaf));  // the leaves are counted again after the loop
+        // Peak of this batch: the leaves so far (counted already), the batch's and the accumulators.
+        nleaves += batch_leaves;
+        if (!mem.add(pool_bytes + batch_leaves * sizeof(Leaf), st, "voxelizing")) return finish(false);
+        mem.sub(pool_bytes);
     }
     work_pool.clear();
     if (cancelled) return finish(st.fail(SvoError::cancelled, "cancelled while voxelizing"));
@@ -453,13 +468,20 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
     std::vector<std::pair<uint64_t, uint32_t>>().swap(pairs);
     std::vector<uint32_t>().swap(tri_ids);
     mem.sub(nbinned * (sizeof(std::pair<uint64_t, uint32_t>) + 8));
-    if (!mem.add(leaves.size() * sizeof(Leaf), st, "collecting voxels")) return finish(false);
-    stats.surface_voxels = leaves.size();
+    stats.surface_voxels = nleaves;
     stats.seconds_voxelize = seconds_since(tv0);
-    // Solid fill.
+    std::vector<LeafSpan> spans;
+    std::vector<Leaf> leaves;  // solid fill: all leaves in one array
     if (opt.fill == SvoFill::solid) {
         const Clock::time_point tf0 = Clock::now();
         if (!report(0.8f, "filling")) return finish(st.fail(SvoError::cancelled, "cancelled"));
+        if (!mem.add(nleaves * sizeof(Leaf), st, "collecting voxels")) return finish(false);
+        leaves.reserve(nleaves);
+        for (std::vector<Leaf>& v : chunk_leaves) {
+            leaves.insert(leaves.end(), v.begin(), v.end());
+            std::vector<Leaf>().swap(v);
+        }
+        mem.sub(nleaves * sizeof(Leaf));
         std::vector<Leaf> interior;
         if (!solid_fill(P, opt, leaves, interior, mem, st)) return finish(false);
         stats.interior_voxels = interior.size();
@@ -471,12 +493,16 @@ inline bool build_svo(const SvoMesh& mesh, const SvoBuildOptions& opt, SvoTree& 
                        [](const Leaf& a, const Leaf& b2) { return a.key < b2.key; });
             leaves.swap(merged);
         }
+        spans.push_back({leaves.data(), leaves.size()});
         stats.seconds_fill = seconds_since(tf0);
+    } else {
+        for (const std::vector<Leaf>& v : chunk_leaves)
+            if (!v.empty()) spans.push_back({v.data(), v.size()});
     }
     // Pack.
     const Clock::time_point tp0 = Clock::now();
     if (!report(0.9f, "packing")) return finish(st.fail(SvoError::cancelled, "cancelled"));
-    if (!pack(opt, leaves, P.depth, opt.attributes, opt.pointer_bits, P.materials, out, mem, st)) return finish(false);
+    if (!pack(opt, spans, P.depth, opt.attributes, opt.pointer_bits, P.materials, out, mem, st)) return finish(false);
     out.root_min = glm::vec3(P.root_min[0], P.root_min[1], P.root_min[2]);
     out.root_size = P.root_size;
     stats.seconds_pack = seconds_since(tp0);
