@@ -927,16 +927,15 @@ struct TriFrame {
         float poly[16][2];
         const int n = clip_slab(sq, nsq, poly, a, b, c0);
         // Fan: projected areas, centroid.
-        double area2 = 0.0, cx = 0.0, cy = 0.0;
+        float area2f = 0.0f, cxf = 0.0f, cyf = 0.0f;  // the polygon lies in the unit square: float suffices
         glm::vec4 csum(0.0f);
         for (int k = 1; k + 1 < n; ++k) {
             const float ar = 0.5f * std::fabs((poly[k][0] - poly[0][0]) * (poly[k + 1][1] - poly[0][1]) -
                                               (poly[k + 1][0] - poly[0][0]) * (poly[k][1] - poly[0][1]));
             if (!(ar > 0.0f)) continue;
-            const double gx = (poly[0][0] + poly[k][0] + poly[k + 1][0]) / 3.0, gy = (poly[0][1] + poly[k][1] + poly[k + 1][1]) / 3.0;
-            cx += gx * ar;
-            cy += gy * ar;
-            area2 += ar;
+            cxf += (poly[0][0] + poly[k][0] + poly[k + 1][0]) * ar;
+            cyf += (poly[0][1] + poly[k][1] + poly[k + 1][1]) * ar;
+            area2f += ar;
             if (tex && want_color) {
                 // Split the piece into 4^s congruent sub-triangles until each spans about a texel
                 // (s <= 4), sampling each at its centroid with the mip level of its footprint: an
@@ -962,6 +961,8 @@ struct TriFrame {
                 csum += acc_s * (ar / static_cast<float>(g * g));
             }
         }
+        const double area2 = area2f;
+        double cx = static_cast<double>(cxf) / 3.0, cy = static_cast<double>(cyf) / 3.0;
         const bool touch = !(area2 > 0.0);
         if (touch) {
             // Touching only (an edge or a corner on the box): one sample at the touching points' mean.
@@ -1114,6 +1115,10 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
     }
     const double inv_s = 1.0 / static_cast<double>(int64_t(1) << kSvoSubvoxelBits);
     const bool attrs = P.attributes != 0;
+    static const struct Morton5 {  // chunk-local Morton keys (cs <= 5)
+        uint32_t m[32];
+        Morton5() { for (uint32_t i = 0; i < 32; ++i) m[i] = static_cast<uint32_t>(spread3(i)); }
+    } morton5;
     const int64_t lo[3] = {org[0], org[1], org[2]};
     const int64_t hi[3] = {int64_t(org[0]) + side - 1, int64_t(org[1]) + side - 1, int64_t(org[2]) + side - 1};
     for (size_t ti = 0; ti < ntri; ++ti) {
@@ -1125,8 +1130,7 @@ inline void voxelize_chunk(const Prepared& P, const uint32_t* tri_ids, size_t nt
         const bool frame = attrs && F.setup(P, tri, tv);
         for_each_overlap(tri.v, kSvoSubvoxelBits, lo, hi, [&](const int64_t c[3]) {
             const int cell[3] = {static_cast<int>(c[0] - lo[0]), static_cast<int>(c[1] - lo[1]), static_cast<int>(c[2] - lo[2])};
-            const uint32_t li = static_cast<uint32_t>(morton(static_cast<uint32_t>(cell[0]), static_cast<uint32_t>(cell[1]),
-                                                             static_cast<uint32_t>(cell[2])));
+            const uint32_t li = morton5.m[cell[0]] | (morton5.m[cell[1]] << 1) | (morton5.m[cell[2]] << 2);
             Accum& A = W.acc[li];
             W.touched[li >> 6] |= uint64_t(1) << (li & 63u);
             if (frame) {
