@@ -952,3 +952,66 @@ TEST(SvoVoxelize, SharedSubNodeAttributes)
     EXPECT_GT(r_full, 0.25);
     EXPECT_LE(r_compact, 0.25);
 }
+
+// ---------------------------------------------------------------------------------------------
+// strip_area: the closed-form area the builder uses for voxels whose column square lies inside
+// the triangle's shadow (untextured, no vertex normals), against clipping the unit square to the
+// strip in float64.
+
+namespace {
+double clipped_strip_area(double a, double b, double c)
+{
+    std::vector<std::pair<double, double>> poly = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    auto clip = [&](double pa, double pb, double pc) {  // keep pa x + pb y + pc >= 0
+        std::vector<std::pair<double, double>> out;
+        for (size_t i = 0; i < poly.size(); ++i) {
+            const auto p = poly[i], q = poly[(i + 1) % poly.size()];
+            const double dp = pa * p.first + pb * p.second + pc, dq = pa * q.first + pb * q.second + pc;
+            if (dp >= 0) out.push_back(p);
+            if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) {
+                const double t = dp / (dp - dq);
+                out.push_back({p.first + (q.first - p.first) * t, p.second + (q.second - p.second) * t});
+            }
+        }
+        poly = out;
+    };
+    clip(a, b, c);
+    clip(-a, -b, 1.0 - c);
+    double twice = 0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const auto p = poly[i], q = poly[(i + 1) % poly.size()];
+        twice += p.first * q.second - q.first * p.second;
+    }
+    return std::fabs(twice) / 2;
+}
+}  // namespace
+
+TEST(SvoBuildFilter, StripAreaMatchesClippingInFloat64)
+{
+    std::vector<float> slopes = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f, 1e-7f, 0.5f, -0.5f, 0.999999f, 0.25f, -0.75f};
+    std::vector<float> offsets = {0.0f, 1.0f, -1.0f, 0.5f, 2.0f, -2.0f, 1e-7f, -1e-7f, 1.0f - 1e-7f, 0.25f, 1.5f, -0.5f};
+    uint64_t rng = 0x9E3779B97F4A7C15ull;
+    auto uni = [&]() {
+        rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<float>(static_cast<double>(rng >> 40) * (1.0 / 16777216.0));
+    };
+    double worst = 0;
+    glm::vec3 worst_at(0.0f);
+    size_t n = 0;
+    auto check = [&](float a, float b, float c) {
+        const double want = clipped_strip_area(a, b, c);
+        const float got = svo_detail::strip_area(a, b, c);
+        ASSERT_TRUE(std::isfinite(got)) << a << " " << b << " " << c;
+        ASSERT_GE(got, 0.0f);
+        ASSERT_LE(got, 1.0f);
+        const double err = std::fabs(static_cast<double>(got) - want);
+        if (err > worst) { worst = err; worst_at = {a, b, c}; }
+        ++n;
+    };
+    for (float a : slopes)
+        for (float b : slopes)
+            for (float c : offsets) check(a, b, c);
+    for (int i = 0; i < 200000; ++i) check(2 * uni() - 1, 2 * uni() - 1, 4 * uni() - 2);
+    // A float area's rounding: a few ulps of 1.
+    EXPECT_LE(worst, 1e-6) << "over " << n << " strips; worst at a = " << worst_at.x << ", b = " << worst_at.y << ", c = " << worst_at.z;
+}

@@ -760,6 +760,30 @@ inline int clip_slab(const float (*in)[2], int n, float (*out)[2], float a, floa
     return m;
 }
 
+/// The area of {(x, y) in [0, 1]^2 : 0 <= a x + b y + c <= 1} (|a|, |b| <= 1), in closed form:
+/// f = a x + b y + c over the unit square is distributed as the sum of two uniform variables of
+/// widths |a| and |b|, whose CDF is piecewise quadratic. The same area as clipping the square to
+/// the strip, up to float rounding.
+inline float strip_area(float a, float b, float c)
+{
+    float lo = std::fabs(a), hi = std::fabs(b);
+    if (lo > hi) std::swap(lo, hi);
+    // The strip's ends above the square's lowest f, each summed from its largest term down, so
+    // that tiny slopes are not lost in rounding c first.
+    const float drop = std::min(a, 0.0f) + std::min(b, 0.0f);
+    const float t1 = (1.0f - c) - drop, t0 = -c - drop;
+    if (!(hi > 0.0f)) return t0 <= 0.0f && t1 >= 0.0f ? 1.0f : 0.0f;  // f is constant
+    auto cdf = [&](float t) {  // area where f - min(f) <= t
+        if (!(t > 0.0f)) return 0.0f;
+        if (t >= lo + hi) return 1.0f;
+        // (r / lo) (r / hi) / 2, not r^2 / (2 lo hi): lo hi underflows for tiny slopes.
+        if (t >= hi) { const float r = lo + hi - t; return 1.0f - 0.5f * (r / lo) * (r / hi); }  // r < lo, so lo > 0
+        if (t >= lo) return (t - 0.5f * lo) / hi;
+        return 0.5f * (t / lo) * (t / hi);  // t < lo, so lo > 0
+    };
+    return cdf(t1) - cdf(t0);
+}
+
 /// One triangle's attribute evaluation, set up once per (chunk, triangle). The part of the
 /// triangle inside a voxel is clipped in the projection onto the plane of the two non-dominant
 /// axes: the triangle is clipped to the voxel's column square once per column, then to the strip
@@ -922,6 +946,24 @@ struct TriFrame {
             // The whole square lies in the strip: the triangle crosses the voxel from side to side
             // over its full column square. Area 1 (projected), centroid at the square's centre.
             contribute_full(cu, cv, acc);
+            return;
+        }
+        if (!(tex && want_color) && !(has_vn && want_normal)) {
+            // Colour and normal are constant over the triangle: only the area is needed.
+            float ar;
+            if (col_inside) {
+                ar = strip_area(a, b, c0);
+            } else {
+                float poly[16][2];
+                const int n = clip_slab(sq, nsq, poly, a, b, c0);
+                float twice = 0.0f;
+                for (int k = 1; k + 1 < n; ++k)
+                    twice += std::fabs((poly[k][0] - poly[0][0]) * (poly[k + 1][1] - poly[0][1]) -
+                                       (poly[k + 1][0] - poly[0][0]) * (poly[k][1] - poly[0][1]));
+                ar = 0.5f * twice;
+            }
+            if (ar > 0.0f) acc.add_area(static_cast<float>(ar * scale), factor, face, tri->material);
+            else acc.add_touch(factor, face, tri->material);
             return;
         }
         float poly[16][2];
