@@ -3,8 +3,10 @@
 // the "Octree build" section of docs/benchmarks.md (scripts/bench_report.py).
 //
 // Suite "svo", one family "svo_build": BM_svo/<mesh>/depth:<d>/threads:<t>, surface fill, colour +
-// normal + material streams, for three test meshes (tests/reference/svo_meshes.hpp): icosphere(3)
-// (1,280 triangles, the thesis's ~1k-triangle case), menger_sponge(2) (2,112 triangles, many holes
+// normal + material streams, for the test meshes (tests/reference/svo_meshes.hpp): icosphere(3)
+// (1,280 triangles, filling its cube), figure() (1,024 triangles, a stand-in for the thesis's character;
+// also with the colour stream only, with shared sub-node attributes, and with smooth vertex
+// normals), menger_sponge(2) (2,112 triangles, many holes
 // and axis-aligned faces) and uv_sphere(256, 137) (69,632 triangles, the ~70k case).
 //   - threads:1 times the single-threaded build. threads:2 times the 2-thread build and, in the same
 //     iterations, a 1-thread build with the timer paused, alternating which goes first (paired,
@@ -282,6 +284,24 @@ void register_row(const MeshCase& mc, int depth, int threads, bool paired, bool 
     }
 }
 
+/// m with smooth vertex normals (area-weighted face normals summed per shared vertex), so that the
+/// builder takes its general path (a normal interpolated at each clipped piece's centroid).
+raykit::SvoMeshData with_smooth_normals(raykit::SvoMeshData m)
+{
+    std::vector<glm::dvec3> sum(m.positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        for (size_t k = 0; k < 3; ++k) sum[m.indices[t + k]] += n;
+    }
+    m.normals.resize(m.positions.size());
+    for (size_t i = 0; i < sum.size(); ++i) {
+        const double l = glm::length(sum[i]);
+        m.normals[i] = l > 0.0 ? glm::vec3(sum[i] / l) : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+    return m;
+}
+
 void register_svo()
 {
     if (env("RAYKIT_BENCH_SVO_SKIP") == "1") return;
@@ -295,6 +315,8 @@ void register_svo()
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::icosphere(3))});
     meshes.push_back({"figure", "figure(): a 1.8-unit standing figure, 1,024 triangles (a stand-in for the thesis's 1,027-triangle character)", 13,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::figure())});
+    meshes.push_back({"figure_smooth", "figure() with smooth vertex normals (the builder's general path: clipped pieces and their centroids)", 11,
+                      std::make_shared<const raykit::SvoMeshData>(with_smooth_normals(rkmesh::figure()))});
     meshes.push_back({"figure_colour", "figure() with the colour stream only (what the thesis's format stores)", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::figure()), RK_SVO_ATTR_COLOR});
     meshes.push_back({"figure_colour_shared",
@@ -306,7 +328,7 @@ void register_svo()
     meshes.push_back({"uvsphere256", "uv_sphere(256, 137): unit sphere, 69,632 triangles (the ~70k case)", 11,
                       std::make_shared<const raykit::SvoMeshData>(rkmesh::uv_sphere(256, 137))});
 
-    add_family(kFam, "Octree build: build_svo on three test meshes, depths 6 and up, 1 and 2 threads");
+    add_family(kFam, "Octree build: build_svo on the test meshes, depths 6 and up, 1 and 2 threads");
     std::string keys;
     for (const MeshCase& mc : meshes) {
         const int max_depth = std::min(cap, full ? mc.full_max_depth : kSmokeMaxDepth);
