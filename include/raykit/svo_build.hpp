@@ -25,7 +25,11 @@
 //   weighted interpolated vertex normal (or face normal), material = that of the largest area.
 //   Inner nodes: area-weighted means of their children (LOD). Interior (solid-fill) voxels take the
 //   base colour of the material whose surface opens their span and carry a zero weight.
-// Cost: O(triangles x chunks touched + voxels touched), parallel over 32^3-voxel chunks.
+//   A triangle without texture and vertex normals (or whose normals are not stored) has constant
+//   colour and normal, so only its area inside each voxel is computed (in closed form where the
+//   voxel's column lies inside the triangle's shadow); the weights are the same up to float rounding.
+// Cost: O(triangles x chunks touched + voxels touched), parallel over 32^3-voxel chunks; the
+// packer reads each chunk's leaves in place and finds bricks in parallel.
 #pragma once
 
 #include <algorithm>
@@ -38,8 +42,10 @@
 #include <iterator>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <utility>
 #include <vector>
 

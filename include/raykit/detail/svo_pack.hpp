@@ -19,9 +19,16 @@ struct Sum {
     uint16_t mat[4] = {0, 0, 0, 0};
     float mw[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
     uint16_t best_mat = 0;
+    uint8_t best = 0;  // slot of best_mat: the first of the heaviest
 
     void add_material(uint16_t m, float weight)
     {
+        // Most leaves of a node share its heaviest material: it only grows, so it stays the first
+        // of the heaviest.
+        if (mw[best] >= 0.0f && mat[best] == m) {
+            mw[best] += weight;
+            return;
+        }
         int slot = -1, lightest = 0;
         for (int i = 0; i < 4; ++i) {
             if (mw[i] >= 0.0f && mat[i] == m) slot = i;
@@ -36,6 +43,7 @@ struct Sum {
         int b = 0;
         for (int i = 1; i < 4; ++i)
             if (mw[i] > mw[b]) b = i;
+        best = static_cast<uint8_t>(b);
         best_mat = mat[b];
     }
     /// Adds leaf l whose colour and normal words decode to c and nn.
@@ -276,7 +284,19 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
     if (attributes & RK_SVO_ATTR_MATERIAL) { t.material.assign(attr, 0u); t.materials = materials; }
     // Attributes, bottom-up: voxels, sub-nodes and the brick itself (in parallel over blocks of
     // bricks), then each descriptor level.
-    std::vector<Sum> child(nb), parent;
+    // The bricks' sums: raw storage each brick's task constructs its element in (a value-initialised
+    // vector would construct all of them on this thread first).
+    struct SumBuffer {
+        Sum* p;
+        explicit SumBuffer(size_t n) : p(static_cast<Sum*>(::operator new(std::max<size_t>(n, 1) * sizeof(Sum)))) {}
+        ~SumBuffer() { ::operator delete(p); }
+        SumBuffer(const SumBuffer&) = delete;
+        SumBuffer& operator=(const SumBuffer&) = delete;
+    };
+    static_assert(std::is_trivially_destructible<Sum>::value, "SumBuffer does not destroy its elements");
+    SumBuffer brick_sums(nb);
+    const Sum* child = brick_sums.p;
+    std::vector<Sum> parent, upper;
     const uint64_t block = 4096;
     parallel_for(opt, static_cast<size_t>((nb + block - 1) / block), [&](size_t blk) {
         const uint64_t j_end = std::min<uint64_t>(nb, (blk + 1) * block);
@@ -312,7 +332,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
                 brick.add(p);
             }
             put_attr(t, desc_words + j, brick);
-            child[j] = brick;
+            new (&brick_sums.p[j]) Sum(brick);
         }
     });
     for (uint32_t L = top; L-- > 0;) {
@@ -325,7 +345,8 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
                 put_attr(t, pos[L][i], parent[i]);
             }
         });
-        child.swap(parent);
+        upper.swap(parent);
+        child = upper.data();
     }
     return true;
 }
