@@ -31,6 +31,14 @@ mkdir -p "$OUT" docs/img
 if [[ "${BENCH_INTERIOR_REPORT_ONLY:-0}" != 1 ]]; then
   cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON >/dev/null
   cmake --build "$BUILD" --target bench_interior_gl -j2
+  # The previous run's results, kept for the comparison in the summary when they came from the same
+  # build: the bench binary and every shader it compiles (same SHA-256 over them).
+  if [[ -f "$OUT/results.json" ]]; then
+    mv "$OUT/results.json" "$OUT/results.prev.json"
+    if [[ -f "$OUT/build.sha256" ]]; then mv "$OUT/build.sha256" "$OUT/build.prev.sha256"; else rm -f "$OUT/build.prev.sha256"; fi
+  fi
+  cat "$BENCH" $(find shaders bench/gl samples/common -type f \( -name '*.glsl' -o -name '*.frag' -o -name '*.vert' \) | sort) \
+    | sha256sum | cut -d' ' -f1 > "$OUT/build.sha256"
   "$BENCH" --width "$WIDTH" --height "$HEIGHT" --rounds "$ROUNDS" --poses "$POSES" --warmup 2 \
     --json "$OUT/results.json" --csv "$OUT/results.csv" --md "$OUT/table.md" \
     --png "$PNG" "$@" | tee "$OUT/console.txt"
@@ -177,11 +185,12 @@ camera pose and in the same pre-pass mode, then the median and quartiles are tak
 ## Results
 
 DOC
-python3 - "$OUT/results.json" <<'PY'
+python3 - "$OUT/results.json" "$OUT" <<'PY'
 # Summary bullets computed from the results (wall time: the meaningful clock on llvmpipe; GPU time
 # otherwise). Medians of per-frame ratios.
-import json, sys
+import json, os, sys
 r = json.load(open(sys.argv[1]))
+out_dir = sys.argv[2]
 cfg = {c["name"]: c for c in r["configs"]}
 llvmpipe = "llvmpipe" in r["renderer"]
 key = "ratio_wall" if llvmpipe else "ratio_gpu"
@@ -259,6 +268,42 @@ for m in ["thesis", "rk_min", "rk_full"]:
         out.append(f"- **{m}, {rows[0]['rooms_per_building']:,} to {rows[-1]['rooms_per_building']:,} rooms per building**: frame time relative to {rows[0]['rooms_per_building']:,} rooms (paired by frame): " + ", ".join(f"{n:,}: {v:.2f}" for n, v in rel) + f" — {verdict}.")
 if "plain +prepass" in cfg and "plain" in cfg:
     out.append(f"- Pre-pass on the plain material: {fmt3(paired3('plain', 'plain +prepass'), True)} frame rate. Shaded fragments per frame (median): {cfg['plain']['fragments']:,.0f} without, {cfg['plain +prepass']['fragments']:,.0f} with the pre-pass (overdraw {cfg['plain']['fragments']/max(cfg['plain +prepass']['fragments'],1):.2f}).")
+# The previous run of the same build: does each summary ratio of one run fall inside the other's
+# sweep range? (the claim that the spread quoted above is the run-to-run spread).
+def sha(name):
+    f = os.path.join(out_dir, name)
+    return open(f).read().strip() if os.path.exists(f) else None
+prev_path = os.path.join(out_dir, "results.prev.json")
+if S > 1 and os.path.exists(prev_path):
+    same = sha("build.sha256") is not None and sha("build.sha256") == sha("build.prev.sha256")
+    if not same:
+        out.append("- The previous run came from another build (bench binary or shaders), so it was not compared.")
+    else:
+        pr = json.load(open(prev_path))
+        pcfg = {c["name"]: c for c in pr["configs"]}
+        pP = pr.get("poses", pr["rounds"]) or pr["rounds"]
+        pS = max(pr["rounds"] // pP, 1)
+        def pstats(a, b):
+            rat = [x / max(y, 1e-9) for x, y in zip(pcfg[a][ka], pcfg[b][ka])]
+            per = [median(rat[i * pP:(i + 1) * pP]) for i in range(pS)]
+            return median(rat), min(per), max(per)
+        pairs = []
+        for m in ["thesis", "rk_min", "rk_min+array", "rk_full"]:
+            pairs.append((m, "plain"))
+            if m + " +prepass" in cfg:
+                pairs.append((m + " +prepass", "plain +prepass"))
+                pairs.append((m, m + " +prepass"))
+        pairs.append(("plain", "plain +prepass"))
+        pairs = [(a, b) for a, b in pairs if a in cfg and b in cfg and a in pcfg and b in pcfg]
+        inside_now = sum(1 for a, b in pairs if pstats(a, b)[1] <= paired3(a, b)[0] <= pstats(a, b)[2])
+        inside_prev = sum(1 for a, b in pairs if paired3(a, b)[1] <= pstats(a, b)[0] <= paired3(a, b)[2])
+        worst = max(pairs, key=lambda ab: abs(paired3(*ab)[0] / pstats(*ab)[0] - 1.0)) if pairs else None
+        if pairs:
+            a, b = worst
+            out.append(f"- **Against the previous run of this build** ({len(pairs)} summary ratios above): {inside_now} of this run's medians "
+                       f"lie inside the previous run's sweep range, {inside_prev} of the previous run's inside this run's; the largest "
+                       f"difference is {a} / {b}: {paired3(a, b)[0]:.2f} now, {pstats(a, b)[0]:.2f} before "
+                       f"({100 * (paired3(a, b)[0] / pstats(a, b)[0] - 1):+.1f} %).")
 if "load" in r:
     out.append(f"- Machine load (1-minute load average from /proc/loadavg) at the start and end of the measured loop: {r['load'][0]} and {r['load'][1]}, on {r.get('cpus', '?')} CPUs; other jobs shared the CPU, which is why only paired per-frame ratios are quoted above.")
 mats = {m["name"]: m for m in r["materials"]}
