@@ -860,7 +860,7 @@ def svo_goals(data):
                 ", %s with 1" % fmt_seconds(t1) if t1 else "", t / goal))
             r11 = data.find(mesh, 11, 2)
             nonleaf = r11.get("nonleaf_nodes") if r11 is not None else None
-            if mesh == SVO_ONE_K and nonleaf:
+            if mesh in (SVO_ONE_K, SVO_ONE_K_DENSE) and nonleaf:
                 # The thesis's file, 4 + 8 (1 + 8 N) bytes, gives its N non-leaf nodes; the build time
                 # grows with the tree, so scale ours to a tree of the thesis's size.
                 thesis_nonleaf = (SVO_THESIS_MB * 1e6 - 12.0) / 64.0
@@ -868,7 +868,7 @@ def svo_goals(data):
                 out.append("  The thesis's depth-11 tree (%.0f MB in its format) has %.2f M non-leaf nodes, %.2fx this "
                            "mesh's %.2f M: scaled by that, a tree of the thesis's size would take about %s on 2 threads (%s)."
                            % (SVO_THESIS_MB, thesis_nonleaf / 1e6, k, nonleaf / 1e6, fmt_seconds(t * k),
-                              "within the goal" if t * k <= goal else "%.1fx the goal" % (t * k / goal)))
+                              "within the goal" if t * k <= goal else "%.2fx the goal" % (t * k / goal)))
     # 5. Depth 13 memory.
     for one_k in (SVO_ONE_K, SVO_ONE_K_DENSE):
         r13 = data.find(one_k, 13, 2) or data.find(one_k, 13, 1)
