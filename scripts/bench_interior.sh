@@ -32,13 +32,14 @@ if [[ "${BENCH_INTERIOR_REPORT_ONLY:-0}" != 1 ]]; then
   cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON >/dev/null
   cmake --build "$BUILD" --target bench_interior_gl -j2
   # The previous run's results, kept for the comparison in the summary when they came from the same
-  # build: the bench binary and every shader it compiles (same SHA-256 over them).
+  # build and settings: the bench binary, every shader it compiles and the run's parameters (same
+  # SHA-256 over them).
   if [[ -f "$OUT/results.json" ]]; then
     mv "$OUT/results.json" "$OUT/results.prev.json"
     if [[ -f "$OUT/build.sha256" ]]; then mv "$OUT/build.sha256" "$OUT/build.prev.sha256"; else rm -f "$OUT/build.prev.sha256"; fi
   fi
-  cat "$BENCH" $(find shaders bench/gl samples/common -type f \( -name '*.glsl' -o -name '*.frag' -o -name '*.vert' \) | sort) \
-    | sha256sum | cut -d' ' -f1 > "$OUT/build.sha256"
+  { cat "$BENCH" $(find shaders bench/gl samples/common -type f \( -name '*.glsl' -o -name '*.frag' -o -name '*.vert' \) | sort)
+    echo "$WIDTH $HEIGHT $ROUNDS $POSES $*"; } | sha256sum | cut -d' ' -f1 > "$OUT/build.sha256"
   "$BENCH" --width "$WIDTH" --height "$HEIGHT" --rounds "$ROUNDS" --poses "$POSES" --warmup 2 \
     --json "$OUT/results.json" --csv "$OUT/results.csv" --md "$OUT/table.md" \
     --png "$PNG" "$@" | tee "$OUT/console.txt"
@@ -280,7 +281,7 @@ if S > 1 and os.path.exists(prev_path):
         out.append("- The previous run came from another build (bench binary or shaders), so it was not compared.")
     else:
         pr = json.load(open(prev_path))
-        pcfg = {c["name"]: c for c in pr["configs"]}
+        pcfg = {c["name"]: c for c in pr["configs"] if ka in c}  # the same clock only
         pP = pr.get("poses", pr["rounds"]) or pr["rounds"]
         pS = max(pr["rounds"] // pP, 1)
         def pstats(a, b):

@@ -244,14 +244,24 @@ TEST(SvoVoxelize, EveryMeshDepths1To7)
         for (int d = 1; d <= 7; ++d) expect_surface_matches(nm.mesh, options(d), nm.name + " depth " + std::to_string(d));
 }
 
-// The packer finds bricks in parallel over blocks of 2^16 leaves, and a brick may straddle a
-// block boundary: a tree of many blocks must still hold exactly the oracle's voxels.
+// The packer finds bricks in parallel over blocks of 2^16 leaves of each span, and a brick may
+// straddle a block boundary. A surface fill's spans are its chunks (at most 2^15 leaves), so the
+// case needs a solid fill, whose leaves form one span: a tree of many blocks must still hold
+// exactly the oracle's voxels.
 TEST(SvoVoxelize, TreeOfManyPackBlocksMatchesTheOracle)
 {
-    SvoBuildOptions o = options(9);
+    const SvoMeshData m = rkmesh::icosphere(3);
+    SvoBuildOptions o = options(7, SvoFill::solid);
     o.threads = 2;
-    Built b;
-    expect_surface_matches(rkmesh::icosphere(3), o, "icosphere(3) depth 9", &b);
+    const Built b = build(m, o);
+    ASSERT_TRUE(b.ok) << b.st.message;
+    const ref_svo::Snapped s = ref_svo::snap_mesh(m, lattice_of(b.tree));
+    const auto surface = ref_svo::surface_voxels(s, 7);
+    const ref_svo::SolidRef in = ref_svo::inside_voxels(s, 7);
+    std::vector<std::uint64_t> want;
+    std::set_union(surface.begin(), surface.end(), in.inside.begin(), in.inside.end(), std::back_inserter(want));
+    EXPECT_TRUE(same_voxels(b.voxels, want, s, "icosphere(3) solid depth 7"));
+    EXPECT_EQ(b.tree.voxel_count, want.size());
     EXPECT_GT(b.tree.voxel_count, 8u << 16) << "fewer leaves than the test needs";
 }
 

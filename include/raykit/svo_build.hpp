@@ -645,8 +645,8 @@ inline bool prepare(const SvoMesh& mesh, const SvoBuildOptions& opt, Prepared& P
     return true;
 }
 
-/// Bytes per leaf voxel the builder holds at its peak: the Morton-sorted leaves (plus the batch
-/// of chunk outputs being appended), the attribute streams (4 bytes per stream per node, 1.34
+/// Bytes per leaf voxel the builder holds at its peak: the Morton-sorted leaves (each chunk's in a
+/// vector of its own; 10 % for their headers and the bricks' records), the attribute streams (4 bytes per stream per node, 1.34
 /// nodes per voxel on surfaces), the bricks' attribute sums (~80 bytes per 12 voxels) and the
 /// structure.
 inline double peak_bytes_per_voxel(uint32_t attributes)
