@@ -141,17 +141,6 @@ struct SatTriangle {
         const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * size + (i128)std::max<int64_t>(A.aw, 0) * size;
         return !(A.thi < blo || A.tlo > bhi);
     }
-    /// Whether the box's projection on axis A lies inside the triangle's projection interval. For
-    /// the three axes e_i x unit_k of one k, all three inside means the box's shadow along k lies
-    /// inside the triangle's shadow (the strips between each edge and the opposite vertex meet in
-    /// the triangle): then the box overlaps the triangle iff it overlaps the triangle's plane.
-    static bool axis_inside(const Axis& A, const int64_t bmin[3], int64_t size)
-    {
-        const i128 base = (i128)A.au * bmin[A.ka] + (i128)A.aw * bmin[A.kb];
-        const i128 blo = base + (i128)std::min<int64_t>(A.au, 0) * size + (i128)std::min<int64_t>(A.aw, 0) * size;
-        const i128 bhi = base + (i128)std::max<int64_t>(A.au, 0) * size + (i128)std::max<int64_t>(A.aw, 0) * size;
-        return A.tlo <= blo && bhi <= A.thi;
-    }
     /// Whether the triangle's plane passes through the box (touching counts).
     bool plane_ok(const int64_t bmin[3], int64_t size) const
     {
@@ -912,14 +901,13 @@ struct TriFrame {
             }
             const int ncuts = int(cuts[0]) + int(cuts[1]) + int(cuts[2]);
             col_inside = ncuts == 0;
+            static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
             if (col_inside) {
-                static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
                 std::memcpy(sq, unit, sizeof unit);
                 nsq = 4;
             } else if (ncuts < 3) {
                 // One or two edges cross the square: clip the square to their half-planes.
                 float b1[8][2];
-                static const float unit[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
                 const float(*src)[2] = unit;
                 int n = 4, done = 0;
                 for (int k = 0; k < 3; ++k) {
@@ -1096,7 +1084,11 @@ inline void for_each_overlap(const int64_t (&v)[3][3], uint32_t shift, const int
         const int64_t bu = cu * S;
         for (int64_t cv = lo[vv]; cv <= hi[vv]; ++cv) {
             const int64_t bv = cv * S;
-            // The three edge axes perpendicular to the dominant axis depend on the column only.
+            // The three edge axes perpendicular to the dominant axis depend on the column only. When
+            // the column's square lies inside all three of their intervals, the square lies inside the
+            // triangle's shadow along w (the strips between each edge and the opposite vertex meet in
+            // the triangle): then a cell overlaps the triangle iff it overlaps its plane, and the six
+            // per-cell edge axes are skipped.
             bool inside = true, out = false;
             for (int i = 0; i < 3; ++i) {
                 const i128 p = (i128)col[i].cu * bu + (i128)col[i].cv * bv;
