@@ -751,8 +751,8 @@ TEST(SvoBuildFilter, InnerNodesAreTheMeansOfTheirLeaves)
 
 TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
 {
-    // Both sides of a thin wall inside one layer of voxels: x = 0.53125 facing -x and x = 0.546875
-    // facing +x (depth 4: voxels 1/16 wide, both in layer x = 8). Their area-weighted normals cancel
+    // Both sides of a thin wall inside one layer of voxels: x = 0.53125 facing +x and x = 0.546875
+    // facing -x (depth 4: voxels 1/16 wide, both in layer x = 8). Their area-weighted normals cancel
     // exactly; the voxel then takes the normal of its largest contribution (+x or -x), not the
     // direction the zero vector encodes (+z).
     rkmesh::SvoMeshData m;
@@ -763,8 +763,8 @@ TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
         m.positions.push_back({xs[side], 1.0f, 0.0f});
         m.positions.push_back({xs[side], 1.0f, 1.0f});
         m.positions.push_back({xs[side], 0.0f, 1.0f});
-        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // normal -x
-        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // normal +x
+        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // normal +x
+        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // normal -x
     }
     m.material_ids.assign(4, 0);
     m.materials.resize(1);
@@ -777,6 +777,44 @@ TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
         const glm::vec3 n = rk_svo_unpack_normal(t.normal[v.attr]);
         EXPECT_GT(std::abs(n.x), 0.999f) << "voxel (" << v.cell.y << ", " << v.cell.z << "): normal " << n.x << " " << n.y << " " << n.z;
     }
+}
+
+TEST(SvoBuildFilter, InnerNodesWhoseNormalsCancelKeepAnAxis)
+{
+    // Two walls facing each other in neighbouring voxels (depth 4: x = 8.5/16 facing +x in voxel 8,
+    // x = 9.5/16 facing -x in voxel 9), of equal area: every node above both holds normals that
+    // cancel exactly. Like a leaf, such a node takes the normal of its heaviest part (+x or -x),
+    // not the direction the zero vector encodes (+z).
+    rkmesh::SvoMeshData m;
+    const float xs[2] = {8.5f / 16.0f, 9.5f / 16.0f};
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t b = static_cast<uint32_t>(m.positions.size());
+        m.positions.push_back({xs[side], 0.0f, 0.0f});
+        m.positions.push_back({xs[side], 1.0f, 0.0f});
+        m.positions.push_back({xs[side], 1.0f, 1.0f});
+        m.positions.push_back({xs[side], 0.0f, 1.0f});
+        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // (e1 x e2).x = +1: +x
+        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // -x
+    }
+    m.material_ids.assign(4, 0);
+    m.materials.resize(1);
+    SvoTree t;
+    if (!build(m, fixed_unit_cube(4), t)) return;
+    const std::vector<Voxel> vox = voxels_of(t);
+    ASSERT_EQ(vox.size(), 512u);
+    const std::vector<uint32_t> gw = t.gpu_words();
+    const uint32_t bbw = t.gpu_brick_base_word();
+    for (uint32_t L = 0; L <= t.depth; ++L)
+        for (const Voxel& v : vox) {
+            const rk_svo_hit h = rk_svo_lookup(gw.data(), t.desc_words, bbw, t.depth, v.cell, L);
+            ASSERT_TRUE(h.found);
+            const glm::vec3 n = rk_svo_unpack_normal(t.normal[h.attr]);
+            ASSERT_GT(std::abs(n.x), 0.999f) << "level " << L << ", voxel (" << v.cell.x << ", " << v.cell.y << ", " << v.cell.z
+                                             << "): normal " << n.x << " " << n.y << " " << n.z;
+            if (L == t.depth) {
+                EXPECT_EQ(n.x > 0.0f, v.cell.x == 8u) << "a leaf keeps its own wall's normal";
+            }
+        }
 }
 
 TEST(SvoBuildFilter, InnerNodesOfTheGradientQuad)

@@ -23,7 +23,8 @@
 //   inside the voxel: the clipped polygon is fanned into triangles, each sampled at its centroid
 //   with a trilinear mip level matching its texel footprint, weighted by 3D area), normal = area-
 //   weighted interpolated vertex normal (or face normal), material = that of the largest area.
-//   Inner nodes: area-weighted means of their children (LOD). Interior (solid-fill) voxels take the
+//   Inner nodes: area-weighted means of their children (LOD; a normal that cancels takes the
+//   heaviest leaf's, as a leaf's takes its largest contribution's). Interior (solid-fill) voxels take the
 //   base colour of the material whose surface opens their span and carry a zero weight.
 //   A triangle without texture and vertex normals (or whose normals are not stored) has constant
 //   colour and normal, so only its area inside each voxel is computed (in closed form where the

@@ -20,6 +20,10 @@ struct Sum {
     float mw[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
     uint16_t best_mat = 0;
     uint8_t best = 0;  // slot of best_mat: the first of the heaviest
+    // The normal of the heaviest leaf below (the first of equals), for nodes whose normals cancel
+    // (the two sides of a thin part), as a leaf takes the normal of its largest contribution.
+    float heavy_w = -1.0f;
+    glm::vec3 heavy_n{0.0f};
 
     void add_material(uint16_t m, float weight)
     {
@@ -55,16 +59,23 @@ struct Sum {
         unrm += nn;
         w += l.weight;
         n += 1.0f;
+        if (l.weight > heavy_w) { heavy_w = l.weight; heavy_n = nn; }
         add_material(l.material, l.weight > 0.0f ? l.weight : 1e-6f);
     }
     void add(const Sum& s)
     {
         w += s.w; n += s.n; col += s.col; ucol += s.ucol; nrm += s.nrm; unrm += s.unrm;
+        if (s.heavy_w > heavy_w) { heavy_w = s.heavy_w; heavy_n = s.heavy_n; }
         for (int i = 0; i < 4; ++i)
             if (s.mw[i] >= 0.0f) add_material(s.mat[i], s.mw[i]);
     }
     uint32_t color() const { return SrgbTables::get().pack(w > 0.0f ? col / w : ucol / std::max(n, 1.0f)); }
-    uint32_t normal() const { return rk_svo_pack_normal(w > 0.0f ? nrm : unrm); }
+    uint32_t normal() const
+    {
+        const glm::vec3 sum = w > 0.0f ? nrm : unrm;
+        const float scale = w > 0.0f ? w : n;  // |sum| <= scale: the same cancellation test as a leaf's
+        return rk_svo_pack_normal(glm::length(sum) > 1e-3f * scale ? sum : heavy_n);
+    }
 };
 
 /// Writes one node's attributes at index i of the present streams.
