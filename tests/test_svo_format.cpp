@@ -749,25 +749,33 @@ TEST(SvoBuildFilter, InnerNodesAreTheMeansOfTheirLeaves)
     EXPECT_EQ(rk_svo_unpack_normal(t.normal[0]), glm::vec3(0, 0, 1));
 }
 
-TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
+/// Two unit squares across [0,1]^2 in y and z, at x = x_plus facing +x and at x = x_minus facing
+/// -x (one material).
+rkmesh::SvoMeshData facing_x_walls(float x_plus, float x_minus)
 {
-    // Both sides of a thin wall inside one layer of voxels: x = 0.53125 facing +x and x = 0.546875
-    // facing -x (depth 4: voxels 1/16 wide, both in layer x = 8). Their area-weighted normals cancel
-    // exactly; the voxel then takes the normal of its largest contribution (+x or -x), not the
-    // direction the zero vector encodes (+z).
     rkmesh::SvoMeshData m;
-    const float xs[2] = {0.53125f, 0.546875f};
+    const float xs[2] = {x_plus, x_minus};
     for (int side = 0; side < 2; ++side) {
         const uint32_t b = static_cast<uint32_t>(m.positions.size());
         m.positions.push_back({xs[side], 0.0f, 0.0f});
         m.positions.push_back({xs[side], 1.0f, 0.0f});
         m.positions.push_back({xs[side], 1.0f, 1.0f});
         m.positions.push_back({xs[side], 0.0f, 1.0f});
-        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // normal +x
-        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // normal -x
+        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // (e1 x e2).x > 0: +x
+        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // -x
     }
     m.material_ids.assign(4, 0);
     m.materials.resize(1);
+    return m;
+}
+
+TEST(SvoBuildFilter, OppositeFacesInOneVoxelKeepTheirAxis)
+{
+    // Both sides of a thin wall inside one layer of voxels: x = 0.53125 facing +x and x = 0.546875
+    // facing -x (depth 4: voxels 1/16 wide, both in layer x = 8). Their area-weighted normals cancel
+    // exactly; the voxel then takes the normal of its largest contribution (+x or -x), not the
+    // direction the zero vector encodes (+z).
+    const rkmesh::SvoMeshData m = facing_x_walls(0.53125f, 0.546875f);
     SvoTree t;
     if (!build(m, fixed_unit_cube(4), t)) return;
     const std::vector<Voxel> vox = voxels_of(t);
@@ -785,19 +793,7 @@ TEST(SvoBuildFilter, InnerNodesWhoseNormalsCancelKeepAnAxis)
     // x = 9.5/16 facing -x in voxel 9), of equal area: every node above both holds normals that
     // cancel exactly. Like a leaf, such a node takes the normal of its heaviest part (+x or -x),
     // not the direction the zero vector encodes (+z).
-    rkmesh::SvoMeshData m;
-    const float xs[2] = {8.5f / 16.0f, 9.5f / 16.0f};
-    for (int side = 0; side < 2; ++side) {
-        const uint32_t b = static_cast<uint32_t>(m.positions.size());
-        m.positions.push_back({xs[side], 0.0f, 0.0f});
-        m.positions.push_back({xs[side], 1.0f, 0.0f});
-        m.positions.push_back({xs[side], 1.0f, 1.0f});
-        m.positions.push_back({xs[side], 0.0f, 1.0f});
-        if (side == 0) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});   // (e1 x e2).x = +1: +x
-        else m.indices.insert(m.indices.end(), {b, b + 2, b + 1, b, b + 3, b + 2});             // -x
-    }
-    m.material_ids.assign(4, 0);
-    m.materials.resize(1);
+    const rkmesh::SvoMeshData m = facing_x_walls(8.5f / 16.0f, 9.5f / 16.0f);
     SvoTree t;
     if (!build(m, fixed_unit_cube(4), t)) return;
     const std::vector<Voxel> vox = voxels_of(t);
