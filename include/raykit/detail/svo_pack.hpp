@@ -120,7 +120,6 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
     // (a block owns the bricks that start in it), each with its voxel mask.
     std::vector<uint64_t> brick_key;
     std::vector<const Leaf*> brick_leaf;  // the brick's first leaf
-    std::vector<uint8_t> brick_n;         // its leaf count - 1 (1..64 leaves)
     std::vector<uint64_t> brick_mask;     // bit i: voxel i of the brick
     const uint32_t bs = 3u * b;
     {
@@ -129,7 +128,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
         std::vector<Task> tasks;
         for (const LeafSpan& sp : spans)
             for (size_t s0 = 0; s0 < sp.n; s0 += lblock) tasks.push_back({sp.p, sp.n, s0, std::min(sp.n, s0 + lblock)});
-        struct Run { std::vector<uint64_t> key, mask; std::vector<const Leaf*> leaf; std::vector<uint8_t> n; };
+        struct Run { std::vector<uint64_t> key, mask; std::vector<const Leaf*> leaf; };
         std::vector<Run> runs(tasks.size());
         parallel_for(opt, tasks.size(), [&](size_t k) {
             const Task& T = tasks[k];
@@ -144,7 +143,6 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
                 for (; i < T.n && (L[i].key >> bs) == bk; ++i) m |= uint64_t(1) << (L[i].key & ((uint64_t(1) << bs) - 1));
                 R.key.push_back(bk);
                 R.leaf.push_back(L + first);
-                R.n.push_back(static_cast<uint8_t>(i - first - 1));
                 R.mask.push_back(m);
             }
         });
@@ -152,12 +150,10 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
         for (const Run& R : runs) total += R.key.size();
         brick_key.reserve(total);
         brick_leaf.reserve(total);
-        brick_n.reserve(total);
         brick_mask.reserve(total);
         for (Run& R : runs) {
             brick_key.insert(brick_key.end(), R.key.begin(), R.key.end());
             brick_leaf.insert(brick_leaf.end(), R.leaf.begin(), R.leaf.end());
-            brick_n.insert(brick_n.end(), R.n.begin(), R.n.end());
             brick_mask.insert(brick_mask.end(), R.mask.begin(), R.mask.end());
             R = Run{};
         }
@@ -282,7 +278,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
             t.brick_base[j] = static_cast<uint32_t>(attr) | (shared ? RK_SVO_BRICK_SHARED_SUB : 0u);
             const uint32_t subs = b == 2 ? static_cast<uint32_t>(bitCount(rk_svo_brick_submask(glm::uvec2(lo, hi)))) : 0u;
             if (b == 2) t.level_nodes[top + 1] += subs;
-            attr += (shared ? 0u : subs) + brick_n[j] + 1u;
+            attr += (shared ? 0u : subs) + static_cast<uint32_t>(bitCount(lo) + bitCount(hi));  // its leaves
             if (attr > attr_limit) return st.fail(SvoError::too_large, "more than 2^31 attribute entries");
         }
         t.level_nodes[depth] = nleaves;
@@ -324,7 +320,7 @@ inline bool pack(const SvoBuildOptions& opt, const std::vector<LeafSpan>& spans,
             Sum brick;
             uint32_t np = 0;
             const Leaf* const bl = brick_leaf[j];
-            const uint32_t bn = brick_n[j] + 1u;
+            const uint32_t bn = static_cast<uint32_t>(bitCount(m.x) + bitCount(m.y));  // the brick's leaves
             for (uint32_t i = 0; i < bn;) {
                 const uint64_t part = b == 2 ? (bl[i].key >> 3) : bl[i].key;
                 Sum p;
