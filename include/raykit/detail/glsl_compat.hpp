@@ -74,4 +74,28 @@ using glm::step;
 using glm::tan;
 using glm::uintBitsToFloat;
 
+// bitCount and findMSB of a scalar uint: the same results as GLM's (and GLSL's), without GLM's
+// 64-bit-wide bit tricks, which GCC 12 turns into a call to libgcc's __popcountdi2 on targets
+// without POPCNT (the octree traversal's child rank and pop use these on every step). The choice
+// of code never depends on compile flags, so every translation unit gets the same function.
+inline int bitCount(uint v)
+{
+    v = v - ((v >> 1u) & 0x55555555u);
+    v = (v & 0x33333333u) + ((v >> 2u) & 0x33333333u);
+    return static_cast<int>((((v + (v >> 4u)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24u);
+}
+inline int findMSB(uint v)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return v == 0u ? -1 : 31 - __builtin_clz(v);
+#else
+    int n = -1;
+    while (v != 0u) {
+        v >>= 1u;
+        ++n;
+    }
+    return n;
+#endif
+}
+
 }  // namespace raykit
