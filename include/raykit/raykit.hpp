@@ -7,6 +7,7 @@
 #include "raykit/envmap_correction.hpp"
 #include "raykit/exposure.hpp"
 #include "raykit/fresnel.hpp"
+#include "raykit/gbuffer.hpp"
 #include "raykit/gpu_layout.hpp"
 #include "raykit/hash.hpp"
 #include "raykit/interior_compose.hpp"
