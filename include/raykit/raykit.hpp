@@ -16,6 +16,7 @@
 #include "raykit/interior_mapping.hpp"
 #include "raykit/interior_params.hpp"
 #include "raykit/interior_surface.hpp"
+#include "raykit/light_volume.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
