@@ -6,7 +6,7 @@
 // Suite "gbuffer", one family: BM_gbuffer/<map>/<storage>.
 //   - Speed: one round trip per call over kInputs random unit directions (z >= 0 for the hemisphere).
 //   - Error: the angle (radians) between the decoded direction and the input, in float64, over
-//     400,000 random directions (RAYKIT_BENCH_GBUFFER_DIRS=n for n: docs/gbuffer.md's table used 10^7)
+//     400,000 random directions (RAYKIT_BENCH_GBUFFER_DIRS=n for n: docs/deferred.md's table used 10^7)
 //     plus poles, folds, the equator and the neighbourhood of -z.
 #include <cmath>
 #include <cstdlib>
@@ -121,7 +121,7 @@ const SuiteRegistrar registrar(
      "step on both fields at an octant face centre): 1.67e-2, 4.15e-3, 1.04e-3 and 6.47e-5 rad for b = 8, 10, "
      "12, 16; the precise encoder lowers the maximum by a third for about seven times the round trip's cost. "
      "UNORM has no code for 0 and loses a little at +z. The hemisphere's and Lambert's maxima sit at their "
-     "singular points (the equator, -z): see docs/gbuffer.md for the errors away from them.",
+     "singular points (the equator, -z): see docs/deferred.md for the errors away from them.",
      "On a GPU the encoders cost ALU only (a division, a few selects; the precise encoder four decodes); the "
      "decode is about ten ALU operations and one inversesqrt. The error columns carry over (same source, "
      "IEEE float32), up to the driver's inversesqrt and division precision (tests/gpu/parity_gbuffer.cpp)."},

@@ -4,7 +4,7 @@
 //
 // Every rk_* function below is compiled from the very same text the GPU runs (docs/dialect.md);
 // tests/gpu/parity_gbuffer.cpp checks that both builds agree on a real driver. Measured errors,
-// costs and the presets' sizes: docs/gbuffer.md.
+// costs and the presets' sizes: docs/deferred.md.
 #pragma once
 
 #include <cmath>

@@ -4,7 +4,7 @@
 // scalars in one 32-bit word.
 //
 // Shared GLSL/C++ source (include/raykit/gbuffer.hpp is the C++ build, with the layout descriptor,
-// its presets and the depth-parameter helpers). Measured errors and costs: docs/gbuffer.md.
+// its presets and the depth-parameter helpers). Measured errors and costs: docs/deferred.md.
 //
 // Unit vectors (every encoder takes any finite vector, normalises it robustly and maps the zero
 // vector, NaN and all-denormal input to +z):
@@ -68,7 +68,7 @@ RK_INLINE vec3 rk_gb_normalize(vec3 v, vec3 fallback)
 /// the diagonals for z < 0 (z = -0 is not folded; on a fold, x = 0 or y = 0 goes to the + side).
 /// Domain: any finite vector (see rk_gb_normalize). Max error: dir -> p -> dir through
 /// rk_gb_oct_decode within 3.5e-7 rad (10^7 random directions + rings through the poles, folds
-/// and equator: docs/gbuffer.md). Cost: 1 div, ~15 flops.
+/// and equator: docs/deferred.md). Cost: 1 div, ~15 flops.
 RK_INLINE vec2 rk_gb_oct_encode(vec3 n)
 {
     float m = max(max(abs(n.x), abs(n.y)), abs(n.z));
@@ -123,7 +123,7 @@ RK_INLINE vec2 rk_gb_hemi_encode(vec3 n)
 /// rk_gb_hemi_decode: (x, y) -> (x, y, sqrt(1 - x² - y²)), renormalised; outside the unit disk
 /// (quantisation) z = 0 and (x, y) is scaled back onto the circle. Always z >= 0.
 /// Max error of the round trip for z >= 0: 2.5e-6 rad for z >= 0.05, 4.9e-4 rad at the equator
-/// (z comes from the square root of a rounding error there; docs/gbuffer.md). Cost: ~6 flops,
+/// (z comes from the square root of a rounding error there; docs/deferred.md). Cost: ~6 flops,
 /// 1 sqrt, 1 rsqrt.
 RK_INLINE vec3 rk_gb_hemi_decode(vec2 e)
 {
@@ -140,7 +140,7 @@ RK_INLINE vec3 rk_gb_hemi_decode(vec2 e)
 /// unit vector; below the equator, as |p| = sqrt((1 - z) / 2) along (x, y) (no cancellation near
 /// -z); -z itself maps to (1, 0) on the rim. Domain: any finite vector (zero -> +z). Max error:
 /// dir -> p -> dir within 5e-6 rad for z > -0.99, 8.8e-4 rad near -z (float cannot resolve |p|
-/// near the rim: directions within ~1e-3 rad of -z share few values; docs/gbuffer.md).
+/// near the rim: directions within ~1e-3 rad of -z share few values; docs/deferred.md).
 /// Cost: rk_gb_normalize + 1 div, 1 rsqrt.
 RK_INLINE vec2 rk_gb_lambert_encode(vec3 n)
 {
