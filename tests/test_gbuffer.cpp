@@ -2,7 +2,7 @@
 // references written here (the octahedral, hemisphere and Lambert maps, round-to-nearest codes,
 // correctly rounded halves, the depth maps of each convention), on random and adversarial inputs:
 // poles, the octahedron's folds, the equator, ±0, denormals, unnormalised and huge vectors, NaN.
-// The bounds asserted are the doc comments' (docs/gbuffer.md has the dense sweeps they come from).
+// The bounds asserted are the doc comments' (docs/deferred.md has the dense sweeps they come from).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -257,12 +257,12 @@ TEST(GbufferQuantise, SnormAndUnormCodesAreTheNearest)
 
 struct OctBound {
     uint32_t bits;
-    double snorm, precise, unorm;  // max angle, rad (docs/gbuffer.md)
+    double snorm, precise, unorm;  // max angle, rad (docs/deferred.md)
 };
 
 TEST(GbufferQuantise, OctahedralAngularErrorBounds)
 {
-    // The documented maxima (dense sweep, docs/gbuffer.md), and the mean.
+    // The documented maxima (dense sweep, docs/deferred.md), and the mean.
     const OctBound bounds[] = {{8u, 1.7e-2, 1.15e-2, 1.7e-2}, {10u, 4.2e-3, 2.9e-3, 4.2e-3}, {12u, 1.05e-3, 7.2e-4, 1.05e-3},
                                {16u, 6.5e-5, 4.5e-5, 6.6e-5}};
     for (const OctBound& ob : bounds) {
@@ -440,7 +440,7 @@ TEST(GbufferDepth, EndToEndErrorByConvention)
 {
     // The distance rebuilt from the depth a float pipeline stores (D32F): reversed-Z keeps ~1e-7
     // relative at every distance; the usual convention loses ~dist / n ulps (the stored d, not the
-    // formula). The rows printed are the table of docs/gbuffer.md.
+    // formula). The rows printed are the table of docs/deferred.md.
     const float n = 0.1f;
     for (const DepthCase& c : kDepthCases) {
         const mat4 P = projection(c, n);

@@ -365,7 +365,7 @@ TEST(LightVolumeRect, DepthRange)
         }
         // Round trip with rk_gb_linear_depth.
         // Round trip with rk_gb_linear_depth: reversed-Z keeps ~1e-7 relative; the usual depth
-        // loses dist / n ulps in the stored d (docs/gbuffer.md).
+        // loses dist / n ulps in the stored d (docs/deferred.md).
         for (float dist : {0.1f, 0.5f, 3.0f, 77.0f, 200.0f}) {
             const double tol = reversed ? 1e-6 : 2.4e-7 * dist / 0.1;
             EXPECT_NEAR(rk_gb_linear_depth(rk_lv_window_depth(dist, k), k), dist, dist * tol) << reversed;
