@@ -21,6 +21,7 @@
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
+#include "raykit/shadow.hpp"
 #include "raykit/status.hpp"
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"
