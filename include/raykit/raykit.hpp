@@ -4,6 +4,7 @@
 #include "raykit/bloom.hpp"
 #include "raykit/color.hpp"
 #include "raykit/common.hpp"
+#include "raykit/edge_aa.hpp"
 #include "raykit/envmap_correction.hpp"
 #include "raykit/exposure.hpp"
 #include "raykit/fresnel.hpp"
