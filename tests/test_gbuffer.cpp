@@ -179,8 +179,8 @@ TEST(GbufferHemisphere, UpperHalfRoundTripsAndLowerHalfMirrors)
             ASSERT_LE(angle(dvec3(r), dvec3(fd.x, fd.y, -fd.z)), 5e-4) << S(f);
         }
     }
-    EXPECT_LE(max_up, 2.5e-6) << "z >= 0.05";
-    EXPECT_LE(max_up_eq, 5e-4) << "z in [0, 0.05): sqrt of a rounding error";
+    EXPECT_LE(max_up, 3e-6) << "z >= 0.05";
+    EXPECT_LE(max_up_eq, 6e-4) << "z in [0, 0.05): sqrt of a rounding error";
 }
 
 TEST(GbufferLambert, RoundTripAgainstFloat64)
@@ -194,9 +194,9 @@ TEST(GbufferLambert, RoundTripAgainstFloat64)
         (dvec3(f).z > -0.99 ? max_far : max_near) = std::max(dvec3(f).z > -0.99 ? max_far : max_near, e);
         max_dec = std::max(max_dec, angle(dvec3(rk_gb_lambert_decode(p)), lambert_decode_d(dvec2(p))));
     }
-    EXPECT_LE(max_far, 5e-6) << "z > -0.99";
-    EXPECT_LE(max_near, 1e-3) << "near -z: float cannot resolve |p| near the rim";
-    EXPECT_LE(max_dec, 1e-3);
+    EXPECT_LE(max_far, 7e-6) << "z > -0.99";
+    EXPECT_LE(max_near, 1.5e-3) << "near -z: float cannot resolve |p| near the rim";
+    EXPECT_LE(max_dec, 1.5e-3);
     EXPECT_EQ(rk_gb_lambert_encode(vec3(0.0f, 0.0f, -1.0f)), vec2(1.0f, 0.0f));
     EXPECT_EQ(rk_gb_lambert_decode(vec2(1.0f, 0.0f)), vec3(0.0f, 0.0f, -1.0f));
     EXPECT_EQ(rk_gb_lambert_encode(vec3(0.0f)), vec2(0.0f)) << "zero -> +z";
@@ -213,35 +213,30 @@ TEST(GbufferQuantise, SnormAndUnormCodesAreTheNearest)
         const double s = double((1u << (b - 1u)) - 1u), su = double((1u << b) - 1u);
         for (int i = 0; i < 20000; ++i) {
             const vec2 p(u(rng), u(rng));
-            const uint32_t w = rk_gb_pack_snorm2(p, b);
+            // The codes are the nearest to the float products the functions form (ties away from
+            // zero for SNORM, up for UNORM), exactly: the reference rounds those floats in double.
+            const uint32_t w = rk_gb_pack_snorm2(p, b), wu = rk_gb_pack_unorm2(p, b);
             const vec2 q = rk_gb_unpack_snorm2(w, b);
             for (int a = 0; a < 2; ++a) {
-                const double x = std::clamp(double(p[a]), -1.0, 1.0) * s, want = round_away(x);
-                // The nearest code (ties away from zero), or its neighbour within float rounding of a tie.
-                if (std::abs(std::abs(x - std::trunc(x)) - 0.5) > 1e-4 * s / 127.0)
-                    ASSERT_EQ(double(q[a]), double(float(want / s))) << "snorm" << b << " " << S(p);
-                else
-                    ASSERT_LE(std::abs(double(q[a]) * s - x), 0.5 + 1e-4 * s / 127.0) << "snorm" << b << " " << S(p);
-            }
-            // UNORM: the code is the nearest, or, within float rounding of a tie, its neighbour.
-            const uint32_t wu = rk_gb_pack_unorm2(p, b);
-            for (int a = 0; a < 2; ++a) {
-                const double x = (std::clamp(double(p[a]), -1.0, 1.0) * 0.5 + 0.5) * su;
-                const double c = double((wu >> (a * b)) & ((1u << b) - 1u));
-                ASSERT_LE(std::abs(c - x), 0.5 + 1e-4 * su / 255.0) << "unorm" << b << " " << S(p);
+                const float c = std::clamp(p[a], -1.0f, 1.0f);
+                const float xs = c * static_cast<float>(s);
+                ASSERT_EQ(double(q[a]), double(float(round_away(double(xs)) / s))) << "snorm" << b << " " << S(p);
+                const float xu = (c * 0.5f + 0.5f) * static_cast<float>(su);
+                const double code = double((wu >> (uint32_t(a) * b)) & ((1u << b) - 1u));
+                ASSERT_EQ(code, std::floor(double(xu) + 0.5)) << "unorm" << b << " " << S(p);
             }
         }
         // Every code decodes and re-encodes to itself (x field; y = x), the most negative SNORM
         // code to -1 (and back to the code of -1).
         for (uint32_t c = 0; c < (1u << b); ++c) {
-            const uint32_t w = c | (c << b);
-            const uint32_t back = rk_gb_pack_snorm2(rk_gb_unpack_snorm2(w, b), b);
+            const uint32_t wc = c | (c << b);
+            const uint32_t back = rk_gb_pack_snorm2(rk_gb_unpack_snorm2(wc, b), b);
             if (c == (1u << (b - 1u))) {
-                EXPECT_EQ(rk_gb_unpack_snorm2(w, b).x, -1.0f);
+                EXPECT_EQ(rk_gb_unpack_snorm2(wc, b).x, -1.0f);
                 continue;
             }
-            ASSERT_EQ(back, w) << "snorm" << b << " code " << c;
-            ASSERT_EQ(rk_gb_pack_unorm2(rk_gb_unpack_unorm2(w, b), b), w) << "unorm" << b << " code " << c;
+            ASSERT_EQ(back, wc) << "snorm" << b << " code " << c;
+            ASSERT_EQ(rk_gb_pack_unorm2(rk_gb_unpack_unorm2(wc, b), b), wc) << "unorm" << b << " code " << c;
         }
     }
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -275,7 +270,7 @@ TEST(GbufferQuantise, OctahedralAngularErrorBounds)
             const double eu = angle(dvec3(rk_gb_oct_unpack_unorm(rk_gb_oct_pack_unorm(f, ob.bits), ob.bits)), dvec3(f));
             // Never worse than the nearest code (which is one of its four candidates), up to the
             // float rounding of the distance it compares.
-            ASSERT_LE(ep, es + 1e-6) << ob.bits << " " << S(f);
+            ASSERT_LE(ep, es + 1e-7) << ob.bits << " " << S(f);
             m_s = std::max(m_s, es);
             m_p = std::max(m_p, ep);
             m_u = std::max(m_u, eu);
@@ -428,7 +423,8 @@ TEST(GbufferDepth, LinearDepthAgainstFloat64AtTheStoredValue)
         } else {
             EXPECT_EQ(rk_gb_linear_depth(c.reversed ? 0.0f : 1.0f, k), RK_FLT_MAX) << c.name;
         }
-        // Outside [0, 1] and NaN are clamped (NaN reads as 0).
+        EXPECT_NEAR(rk_gb_linear_depth(std::numeric_limits<float>::quiet_NaN(), k), n, n * 1e-6) << c.name << ": NaN reads as the near plane";
+        // Outside [0, 1] and NaN are clamped.
         for (float d : {-1.0f, 2.0f, std::numeric_limits<float>::quiet_NaN(), -0.0f, 1e-45f, 3e38f}) {
             const float r = rk_gb_linear_depth(d, k);
             EXPECT_TRUE(std::isfinite(r) && r >= float(n) * 0.999999f) << c.name << " d " << S(d) << " -> " << S(r);
@@ -467,6 +463,18 @@ TEST(GbufferDepth, EndToEndErrorByConvention)
         }
         std::printf("\n");
     }
+}
+
+TEST(GbufferDepth, ViewRayOfADegenerateMatrixStaysFinite)
+{
+    mat4 P(0.0f);
+    P[0][0] = 1e-39f;
+    P[1][1] = 1e-20f;
+    P[2][0] = 1e20f;
+    const vec4 ray = gbuffer_view_ray(P);
+    EXPECT_TRUE(std::isfinite(ray.x) && std::isfinite(ray.y) && std::isfinite(ray.z) && std::isfinite(ray.w));
+    const vec3 p = rk_gb_view_pos(vec2(0.0f), 1.0f, ray);
+    EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
 }
 
 TEST(GbufferDepth, ViewPositionAgainstFloat64)

@@ -36,12 +36,15 @@ inline vec3 gbuffer_depth_params(double n, double f, bool reversed)
 /// gbuffer_view_ray: the `ray` uniform of rk_gb_view_pos for the column-major perspective
 /// projection P (any depth convention, off-centre frusta, Vulkan's negative P[1][1]):
 /// (1 / P[0][0], 1 / P[1][1], P[2][0] / P[0][0], P[2][1] / P[1][1]), in double. A P with a zero
-/// diagonal entry (not a projection) gives 0 for that axis.
+/// diagonal entry (not a projection) gives 0 for that axis; entries beyond float's range are held
+/// at +-RK_FLT_MAX (rk_gb_view_pos then stays finite).
 inline vec4 gbuffer_view_ray(const mat4& P)
 {
-    const double a = P[0][0], b = P[1][1];
+    const double a = P[0][0], b = P[1][1], lim = static_cast<double>(RK_FLT_MAX);
     const double ia = a != 0.0 ? 1.0 / a : 0.0, ib = b != 0.0 ? 1.0 / b : 0.0;
-    return vec4(static_cast<float>(ia), static_cast<float>(ib), static_cast<float>(P[2][0] * ia), static_cast<float>(P[2][1] * ib));
+    // A tiny diagonal would overflow float: every entry is held at +-RK_FLT_MAX.
+    auto f = [lim](double x) { return static_cast<float>(std::min(std::max(x, -lim), lim)); };
+    return vec4(f(ia), f(ib), f(P[2][0] * ia), f(P[2][1] * ib));
 }
 
 // ---------------------------------------------------------------------------------------------

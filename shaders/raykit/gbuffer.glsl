@@ -29,6 +29,10 @@
 //   only change k: rk_gb_depth_params, in C++ gbuffer_depth_params in double).
 //   rk_gb_view_pos rebuilds the view-space position from NDC x, y and that distance.
 //
+// NaN handling (NaN inputs read as documented per function) relies on IEEE comparisons, which
+// GLSL ES 3.00 does not require and a driver may fold away: on such drivers only finite inputs are
+// covered.
+//
 // @rk-es 310
 // @rk-es300
 #ifndef RK_GBUFFER_GLSL
@@ -44,7 +48,7 @@ RK_INLINE float rk_gb_clamp_unit(float x) { return x >= -1.0f ? min(x, 1.0f) : (
 
 /// rk_gb_normalize: v / |v| for any finite v, scaled by its largest component first so that
 /// neither the squares overflow nor denormals lose their direction; a zero, all-denormal or NaN
-/// vector gives `fallback`. Max error: 1.5 ulp per component of a unit result. Cost: 1 div,
+/// vector gives `fallback`. Max error: 3.5 ulp per component of a unit result. Cost: 1 div,
 /// 1 rsqrt, ~10 flops.
 RK_INLINE vec3 rk_gb_normalize(vec3 v, vec3 fallback)
 {
@@ -122,7 +126,7 @@ RK_INLINE vec2 rk_gb_hemi_encode(vec3 n)
 
 /// rk_gb_hemi_decode: (x, y) -> (x, y, sqrt(1 - x² - y²)), renormalised; outside the unit disk
 /// (quantisation) z = 0 and (x, y) is scaled back onto the circle. Always z >= 0.
-/// Max error of the round trip for z >= 0: 2.5e-6 rad for z >= 0.05, 4.9e-4 rad at the equator
+/// Max error of the round trip for z >= 0: 2.9e-6 rad for z >= 0.05, 5.5e-4 rad at the equator
 /// (z comes from the square root of a rounding error there; docs/deferred.md). Cost: ~6 flops,
 /// 1 sqrt, 1 rsqrt.
 RK_INLINE vec3 rk_gb_hemi_decode(vec2 e)
@@ -139,7 +143,7 @@ RK_INLINE vec3 rk_gb_hemi_decode(vec2 e)
 /// rk_gb_lambert_encode: a direction -> p in the unit disk: p = (x, y) / sqrt(2 (1 + z)) for the
 /// unit vector; below the equator, as |p| = sqrt((1 - z) / 2) along (x, y) (no cancellation near
 /// -z); -z itself maps to (1, 0) on the rim. Domain: any finite vector (zero -> +z). Max error:
-/// dir -> p -> dir within 5e-6 rad for z > -0.99, 8.8e-4 rad near -z (float cannot resolve |p|
+/// dir -> p -> dir within 6e-6 rad for z > -0.99, 1.3e-3 rad near -z (float cannot resolve |p|
 /// near the rim: directions within ~1e-3 rad of -z share few values; docs/deferred.md).
 /// Cost: rk_gb_normalize + 1 div, 1 rsqrt.
 RK_INLINE vec2 rk_gb_lambert_encode(vec3 n)
@@ -180,17 +184,23 @@ RK_INLINE vec3 rk_gb_lambert_decode(vec2 p)
 // Quantisation of a point of [-1, 1]^2 (any of the maps above)
 
 /// rk_gb_pack_snorm2: p (clamped to [-1, 1]^2) -> two b-bit signed fields (x in bits 0..b-1, y in
-/// bits b..2b-1, two's complement), q = round(p * (2^(b-1) - 1)), ties away from zero (what SNORM
-/// render targets do). bits in 2..16 (clamped). NaN stores the code of 0. The nearest code, except
-/// within a float rounding of p * (2^(b-1) - 1) from a tie. Cost: ~12 integer ops.
+/// bits b..2b-1, two's complement), q = round(p * (2^(b-1) - 1)) to the nearest code, ties away from
+/// zero (D3D rounds to nearest; OpenGL and Vulkan leave ties to the implementation). bits in 2..16
+/// (clamped). NaN stores the code of 0. Exact for the float product p * (2^(b-1) - 1).
+/// Cost: ~16 ops.
 RK_INLINE uint rk_gb_pack_snorm2(vec2 p, uint bits)
 {
     uint b = clamp(bits, 2u, 16u);
     float s = float((1u << (b - 1u)) - 1u);
-    float x = rk_gb_clamp_unit(p.x) * s;
-    float y = rk_gb_clamp_unit(p.y) * s;
-    int qx = int(x + (x >= 0.0f ? 0.5f : -0.5f));
-    int qy = int(y + (y >= 0.0f ? 0.5f : -0.5f));
+    RK_PRECISE float x = rk_gb_clamp_unit(p.x) * s;
+    RK_PRECISE float y = rk_gb_clamp_unit(p.y) * s;
+    // Round half away from zero with an exact tie test (x + 0.5 would round twice).
+    float ax = abs(x);
+    float ay = abs(y);
+    float fx = floor(ax);
+    float fy = floor(ay);
+    int qx = int(fx + (ax - fx >= 0.5f ? 1.0f : 0.0f)) * (x < 0.0f ? -1 : 1);
+    int qy = int(fy + (ay - fy >= 0.5f ? 1.0f : 0.0f)) * (y < 0.0f ? -1 : 1);
     uint mask = (1u << b) - 1u;
     return (uint(qx) & mask) | ((uint(qy) & mask) << b);
 }
@@ -211,17 +221,19 @@ RK_INLINE vec2 rk_gb_unpack_snorm2(uint w, uint bits)
 }
 
 /// rk_gb_pack_unorm2: p (clamped to [-1, 1]^2) mapped to u = 0.5 p + 0.5 -> two b-bit unsigned
-/// fields, q = round(u * (2^b - 1)) (UNORM render targets; nearest except within float rounding of
-/// a tie). bits in 1..16 (clamped). NaN stores the code of 0.
+/// fields, q = round(u * (2^b - 1)) to the nearest code (UNORM render targets), ties up, exact for
+/// the float value u * (2^b - 1). bits in 1..16 (clamped). NaN stores the code of 0.
 /// Note: 0 (the octahedral +z, the hemisphere pole) has no exact UNORM code. Cost: ~10 ops.
 RK_INLINE uint rk_gb_pack_unorm2(vec2 p, uint bits)
 {
     uint b = clamp(bits, 1u, 16u);
     float s = float((1u << b) - 1u);
-    float x = (rk_gb_clamp_unit(p.x) * 0.5f + 0.5f) * s;
-    float y = (rk_gb_clamp_unit(p.y) * 0.5f + 0.5f) * s;
-    uint qx = uint(x + 0.5f);
-    uint qy = uint(y + 0.5f);
+    RK_PRECISE float x = (rk_gb_clamp_unit(p.x) * 0.5f + 0.5f) * s;
+    RK_PRECISE float y = (rk_gb_clamp_unit(p.y) * 0.5f + 0.5f) * s;
+    float fx = floor(x);
+    float fy = floor(y);
+    uint qx = uint(fx + (x - fx >= 0.5f ? 1.0f : 0.0f));  // exact tie test, ties up
+    uint qy = uint(fy + (y - fy >= 0.5f ? 1.0f : 0.0f));
     return qx | (qy << b);
 }
 
@@ -235,8 +247,9 @@ RK_INLINE vec2 rk_gb_unpack_unorm2(uint w, uint bits)
 }
 
 /// rk_gb_quantize_snorm2 / rk_gb_quantize_unorm2: the value an RG SNORM (resp. UNORM, as
-/// 0.5 p + 0.5) target of b bits per channel stores for p: write it instead of p to know exactly
-/// what is stored (and to write a code chosen by rk_gb_oct_pack_snorm_precise). Cost: pack+unpack.
+/// 0.5 p + 0.5) target of b bits per channel stores for p when it rounds to nearest (a code value:
+/// written back, every target stores it unchanged, which is how a code chosen by
+/// rk_gb_oct_pack_snorm_precise is written). Cost: pack + unpack.
 RK_INLINE vec2 rk_gb_quantize_snorm2(vec2 p, uint bits) { return rk_gb_unpack_snorm2(rk_gb_pack_snorm2(p, bits), bits); }
 RK_INLINE vec2 rk_gb_quantize_unorm2(vec2 p, uint bits)
 {
@@ -254,7 +267,8 @@ RK_INLINE vec3 rk_gb_oct_unpack_snorm(uint w, uint bits) { return rk_gb_oct_deco
 /// rk_gb_oct_pack_snorm_precise: of the four codes around the octahedral point (floor and ceil on
 /// each axis), the one whose decoded direction is closest to n (Cigolle's octNP); ties keep the
 /// first in the order (floor, floor), (ceil, floor), (floor, ceil), (ceil, ceil). Never worse than
-/// rk_gb_oct_pack_snorm (the nearest code is one of the four). Max error: 1.12e-2, 2.77e-3,
+/// rk_gb_oct_pack_snorm beyond the float rounding of the distances it compares (the nearest code
+/// is one of the four; at 16 bits 7e-8 rad in 181 of 2e6 directions). Max error: 1.12e-2, 2.77e-3,
 /// 6.9e-4, 4.31e-5 rad for b = 8, 10, 12, 16 (10^7 directions), two thirds of the nearest code's.
 /// Cost: 4 decodes (~7x a round trip on a CPU).
 RK_INLINE uint rk_gb_oct_pack_snorm_precise(vec3 n, uint bits)
@@ -274,7 +288,7 @@ RK_INLINE uint rk_gb_oct_pack_snorm_precise(vec3 n, uint bits)
         float cy = min(fy + float(k >> 1u), s);
         uint w = rk_gb_pack_snorm2(vec2(cx / s, cy / s), b);
         vec3 e = rk_gb_oct_unpack_snorm(w, b) - u;
-        float d2 = dot(e, e);
+        RK_PRECISE float d2 = dot(e, e);
         if (d2 < best_d2) {
             best_d2 = d2;
             best = w;
@@ -297,7 +311,7 @@ RK_INLINE vec3 rk_gb_oct_unpack_unorm(uint w, uint bits) { return rk_gb_oct_deco
 /// depth (near at 0, far at 1: OpenGL's [-1, 1] NDC and Vulkan's [0, 1] give the same window depth)
 /// and true for reversed-Z (near at 1): k = (1 / n, 1 / f or 0, reversed ? 0 : 1).
 /// Domain: n > 0 (below RK_FLT_MIN, n and f read as RK_FLT_MIN, so k stays finite). In float;
-/// gbuffer_depth_params (C++) computes the same in double. Cost: 2 div.
+/// gbuffer_depth_params (C++) computes the same in double for finite n > 0. Cost: 2 div.
 RK_INLINE vec3 rk_gb_depth_params(float n, float f, bool reversed)
 {
     bool inf = !(f > n) || !(f <= RK_FLT_MAX);
@@ -310,13 +324,14 @@ RK_INLINE vec3 rk_gb_depth_params(float n, float f, bool reversed)
 /// t = |k.z - d| (1 - d usual, d reversed; exact for d >= 0.5), 1 / dist = t / n + (1 - t) / f:
 /// two non-negative terms, no cancellation, unlike the textbook n f / (f - d (f - n)), which loses
 /// f / n ulps near the far plane. The far plane of an infinite projection gives RK_FLT_MAX.
-/// Max error (relative, against float64 at the same stored d): 1.6e-7 (tests/test_gbuffer.cpp: every
+/// Max error (relative, against float64 at the same stored d): 2e-7 (tests/test_gbuffer.cpp: every
 /// 64th float in [0, 1], every float near 0 and 1, five conventions); what the
 /// stored d itself carries depends on the convention (the usual one keeps ~dist / n ulps, reversed-Z
 /// float depth ~1e-7 everywhere). Cost: 1 abs, 2 fma, 1 div.
 RK_INLINE float rk_gb_linear_depth(float d, vec3 k)
 {
-    float dc = d >= 0.0f ? min(d, 1.0f) : 0.0f;
+    // NaN reads as the near plane: 0 usual (k.z = 1), 1 reversed (k.z = 0).
+    float dc = d >= 0.0f ? min(d, 1.0f) : (d < 0.0f ? 0.0f : 1.0f - k.z);
     float t = abs(k.z - dc);
     float q = t * k.x + (1.0f - t) * k.y;
     return q > 0.0f ? clamp(1.0f / q, RK_FLT_MIN, RK_FLT_MAX) : RK_FLT_MAX;

@@ -1,7 +1,9 @@
 // GPU parity for shaders/raykit/gbuffer.glsl (see parity.hpp): every shared function on the driver
 // against its C++ build, over random and adversarial inputs (±0, denormals, FLT_MAX, NaN-free
-// extremes). Integer results (packed words, half bits) must match bit for bit; the float maps within
-// the harness's tolerance.
+// extremes). The half conversions and the packing of given points must match bit for bit (except
+// at exact ties, which the rounding rule settles the same way on both); the octahedral words go
+// through a division and a normalisation, whose last-ulp differences between builds may move a
+// point across a code boundary, so they are compared as values (one code apart at most).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -111,7 +113,7 @@ TEST(GpuParity, Gbuffer)
                      {}});
     // Near the maps' singular points (the hemisphere's equator, Lambert's rim at -z) the decode
     // turns ulp differences of sqrt / inversesqrt into angles of up to the documented bounds
-    // (5e-4 and 1e-3 rad): there, rows whose encodings agree within 4 ulp and whose directions agree
+    // (5.5e-4 and 1.3e-3 rad): there, rows whose encodings agree within 4 ulp and whose directions agree
     // within those bounds are ties.
     auto near_singular = [](double bound) {
         return [bound](const float*, const float* g, const float* h) {
@@ -121,19 +123,29 @@ TEST(GpuParity, Gbuffer)
         };
     };
     for (Entry& e : cases) {
-        if (e.c.name == "rk_gb_hemi_encode / decode") e.c.tie = near_singular(5e-4);
-        if (e.c.name == "rk_gb_lambert_encode / decode") e.c.tie = near_singular(1e-3);
+        if (e.c.name == "rk_gb_hemi_encode / decode") e.c.tie = near_singular(6e-4);
+        if (e.c.name == "rk_gb_lambert_encode / decode") e.c.tie = near_singular(1.5e-3);
         // The word columns of the pack case: a tie is a row whose codes differ by one step on one
         // axis, the float product being within rounding of a half-way point.
         if (e.c.name == "rk_gb_pack_snorm2 / unorm2 and unpack") {
+            // A tie only where an input's product lies within a few ulps of a half-way point (a
+            // driver may round the product itself differently) and the codes are neighbours.
             e.c.tie = [](const float* in, const float* g, const float* h) {
-                const uint32_t b = static_cast<uint32_t>(std::min(std::max(in[2], 1.0f), 17.0f));
+                const uint32_t b = std::min(std::max(static_cast<uint32_t>(std::min(std::max(in[2], 1.0f), 17.0f)), 1u), 16u);
+                const uint32_t bs = std::max(b, 2u);
+                const double s = double((1u << (bs - 1u)) - 1u), su = double((1u << b) - 1u);
+                bool near_half = false;
+                for (int a = 0; a < 2; ++a) {
+                    const double c = std::min(std::max(double(in[a]), -1.0), 1.0);
+                    for (double x : {std::abs(c * s), (c * 0.5 + 0.5) * su})
+                        near_half = near_half || std::abs(x - std::floor(x) - 0.5) <= 8.0 * x * 1.2e-7;
+                }
                 const uint32_t wg = uint32_t(g[0]) | (uint32_t(g[1]) << 16), wh = uint32_t(h[0]) | (uint32_t(h[1]) << 16);
                 const uint32_t ug = uint32_t(g[2]) | (uint32_t(g[3]) << 16), uh = uint32_t(h[2]) | (uint32_t(h[3]) << 16);
-                const vec2 sg = rk_gb_unpack_snorm2(wg, b), sh = rk_gb_unpack_snorm2(wh, b);
-                const vec2 qg = rk_gb_unpack_unorm2(ug, b), qh = rk_gb_unpack_unorm2(uh, b);
-                const double step = 2.0 / double((1u << std::min(std::max(b, 1u), 16u)) - 1u);
-                return glm::length(glm::dvec2(sg) - glm::dvec2(sh)) <= 1.01 * step && glm::length(glm::dvec2(qg) - glm::dvec2(qh)) <= 1.01 * step;
+                const double step = 2.0 / su;
+                const bool neighbours = glm::length(glm::dvec2(rk_gb_unpack_snorm2(wg, b)) - glm::dvec2(rk_gb_unpack_snorm2(wh, b))) <= 2.1 / s &&
+                                        glm::length(glm::dvec2(rk_gb_unpack_unorm2(ug, b)) - glm::dvec2(rk_gb_unpack_unorm2(uh, b))) <= 1.01 * step;
+                return near_half && neighbours;
             };
         }
         const parity::Result r = parity::run(e.c, parity::shader_dir(), 8192, e.exact);
