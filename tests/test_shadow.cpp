@@ -254,6 +254,34 @@ TEST(Shadow, SamplePatterns)
     }
 }
 
+TEST(Shadow, CubeMapReferenceDepthMatchesTheFaceProjection)
+{
+    // The six faces of a cube shadow map, each rendered with perspective(90 degrees, 1, n, f) looking
+    // down its axis: the depth a face stores for a point equals rk_sh_cube_ref_depth of its vector.
+    const float n = 0.05f, f = 80.0f;
+    const glm::dmat4 proj = glm::perspective(glm::radians(90.0), 1.0, double(n), double(f));
+    const dvec3 axes[6] = {dvec3(1, 0, 0), dvec3(-1, 0, 0), dvec3(0, 1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1)};
+    const dvec3 ups[6] = {dvec3(0, -1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1), dvec3(0, -1, 0), dvec3(0, -1, 0)};
+    std::mt19937 rng(17u);
+    std::normal_distribution<double> g;
+    double worst = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+        const dvec3 v = glm::normalize(dvec3(g(rng), g(rng), g(rng))) * (double(n) * std::pow(double(f) / n, std::abs(g(rng)) / 3.0));
+        int face = 0;
+        for (int k = 1; k < 6; ++k)
+            if (glm::dot(v, axes[k]) > glm::dot(v, axes[face])) face = k;
+        const glm::dvec4 c = proj * glm::lookAt(dvec3(0.0), axes[face], ups[face]) * glm::dvec4(v, 1.0);
+        const double want = 0.5 * (c.z / c.w) + 0.5;
+        const float got = rk_sh_cube_ref_depth(vec3(v), n, f);
+        if (want >= 0.0 && want <= 1.0) worst = std::max(worst, std::abs(double(got) - want));
+    }
+    EXPECT_LE(worst, 4e-7) << "against the float64 face projection";
+    EXPECT_NEAR(rk_sh_cube_ref_depth(vec3(0, f, 0), n, f), 1.0f, 1e-6f);
+    EXPECT_NEAR(rk_sh_cube_ref_depth(vec3(0, 0, -n), n, f), 0.0f, 1e-7f);
+    EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_depth(vec3(0.0f), n, f)));
+    EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_depth(vec3(1.0f), 0.0f, 0.0f)));
+}
+
 TEST(Shadow, AdversarialInputsStayFinite)
 {
     using rktest::adv::finite;

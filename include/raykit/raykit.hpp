@@ -23,6 +23,7 @@
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/shadow.hpp"
+#include "raykit/shadow_filter.hpp"
 #include "raykit/status.hpp"
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"

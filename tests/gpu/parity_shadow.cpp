@@ -42,6 +42,8 @@ TEST(GpuParity, Shadow)
                   o[0] = rk_sh_rotation(uvec2(uint(clamp(a[0], 0.0f, 1.0f) * 4000.0f), uint(clamp(a[1], 0.0f, 1.0f) * 4000.0f)));),
         RK_PARITY("rk_sh_pcss_penumbra", S, (dist(), dist(), dom::unit()), 1,
                   o[0] = rk_sh_pcss_penumbra(a[0], a[1], a[2]);),
+        RK_PARITY("rk_sh_cube_ref_depth", S, (coord(), coord(), coord()), 1,
+                  o[0] = rk_sh_cube_ref_depth(vec3(clamp(a[0], -10.0f, 10.0f), clamp(a[1], -10.0f, 10.0f), clamp(a[2], -10.0f, 10.0f)), 0.05f, 80.0f);),
         RK_PARITY("rk_sh_cascade_index / rk_sh_cascade_blend", S, (dist(), dom::unit()), 2,
                   o[0] = float(rk_sh_cascade_index(a[0], vec4(10.0f, 30.0f, 60.0f, 120.0f)));
                   o[1] = rk_sh_cascade_blend(a[0], 30.0f, 8.0f * a[1]);),
