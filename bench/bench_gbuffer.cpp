@@ -119,7 +119,7 @@ const SuiteRegistrar registrar(
      "-z (the hemisphere rows: their mirror images with z >= 0, its only domain). **worst at**: the input's z.\n"
      "- Octahedral SNORM with b bits per field has the analytic maximum 3 sqrt(2) / (2 (2^(b-1) - 1)) (half a "
      "step on both fields at an octant face centre): 1.67e-2, 4.15e-3, 1.04e-3 and 6.47e-5 rad for b = 8, 10, "
-     "12, 16; the precise encoder lowers the maximum by a third for about seven times the round trip's cost. "
+     "12, 16; the precise encoder lowers the maximum by a third for seven to nine times the round trip's cost. "
      "UNORM has no code for 0 and loses a little at +z. The hemisphere's and Lambert's maxima sit at their "
      "singular points (the equator, -z): see docs/deferred.md for the errors away from them.",
      "On a GPU the encoders cost ALU only (a division, a few selects; the precise encoder four decodes); the "

@@ -270,7 +270,7 @@ RK_INLINE vec3 rk_gb_oct_unpack_snorm(uint w, uint bits) { return rk_gb_oct_deco
 /// rk_gb_oct_pack_snorm beyond the float rounding of the distances it compares (the nearest code
 /// is one of the four; at 16 bits 7e-8 rad in 181 of 2e6 directions). Max error: 1.12e-2, 2.77e-3,
 /// 6.9e-4, 4.31e-5 rad for b = 8, 10, 12, 16 (10^7 directions), two thirds of the nearest code's.
-/// Cost: 4 decodes (~7x a round trip on a CPU).
+/// Cost: 4 decodes (7-9x a round trip on a CPU).
 RK_INLINE uint rk_gb_oct_pack_snorm_precise(vec3 n, uint bits)
 {
     uint b = clamp(bits, 2u, 16u);
