@@ -368,7 +368,7 @@ TEST(LightVolumeRect, DepthRange)
         // loses dist / n ulps in the stored d (docs/deferred.md).
         for (float dist : {0.1f, 0.5f, 3.0f, 77.0f, 200.0f}) {
             const double tol = reversed ? 1e-6 : 2.4e-7 * dist / 0.1;
-            EXPECT_NEAR(rk_gb_linear_depth(rk_lv_window_depth(dist, k), k), dist, dist * tol) << reversed;
+            EXPECT_NEAR(rk_gb_linear_depth(rk_gb_window_depth(dist, k), k), dist, dist * tol) << reversed;
         }
     }
 }

@@ -98,6 +98,25 @@ RK_INLINE float rk_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
 /// denormals give a large finite value instead of inf. Cost: 1 max + 1 div.
 RK_INLINE float rk_safe_rcp_pos(float x) { return 1.0f / max(x, RK_FLT_MIN); }
 
+/// rk_normalize_safe: v / |v|, scaled by its largest component first so that neither the squares
+/// overflow nor denormals lose their direction; a zero or all-denormal vector, or one with a NaN or
+/// infinite component, gives `fallback`. Max error: 3.5 ulp per component of a unit result.
+/// Cost: 1 div, 1 rsqrt, ~10 flops.
+RK_INLINE vec3 rk_normalize_safe(vec3 v, vec3 fallback)
+{
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    // Each component checked: max() may drop a NaN operand.
+    if (!(m >= RK_FLT_MIN) || !(abs(v.x) <= RK_FLT_MAX) || !(abs(v.y) <= RK_FLT_MAX) || !(abs(v.z) <= RK_FLT_MAX))
+        return fallback;
+    // Above 2^100, scale by 2^-100 first (exact): GLSL only specifies division by values up to 2^126.
+    if (m > 1.2676506e30f) {
+        v *= 7.8886091e-31f;
+        m *= 7.8886091e-31f;
+    }
+    vec3 p = v / m;
+    return p * inversesqrt(dot(p, p));
+}
+
 /// rk_bit_count_portable / rk_find_msb_portable: bitCount and findMSB of a uint without the
 /// built-ins (GLSL ES 3.00 / WebGL 2 lacks them; there, these replace the built-ins, see below).
 /// Exact: the built-ins' results for every uint (-1 for findMSB(0)). Cost: ~12 and ~10 integer ops.

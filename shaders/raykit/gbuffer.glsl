@@ -46,31 +46,12 @@ RK_INLINE float rk_gb_sign_not_zero(float x) { return x >= 0.0f ? 1.0f : -1.0f; 
 /// rk_gb_clamp_unit: x clamped to [-1, 1], NaN -> 0 (clamp leaves NaN undefined). Cost: 2 selects.
 RK_INLINE float rk_gb_clamp_unit(float x) { return x >= -1.0f ? min(x, 1.0f) : (x < -1.0f ? -1.0f : 0.0f); }
 
-/// rk_gb_normalize: v / |v| for any finite v, scaled by its largest component first so that
-/// neither the squares overflow nor denormals lose their direction; a zero, all-denormal or NaN
-/// vector gives `fallback`. Max error: 3.5 ulp per component of a unit result. Cost: 1 div,
-/// 1 rsqrt, ~10 flops.
-RK_INLINE vec3 rk_gb_normalize(vec3 v, vec3 fallback)
-{
-    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
-    // Each component checked: max() may drop a NaN operand.
-    if (!(m >= RK_FLT_MIN) || !(abs(v.x) <= RK_FLT_MAX) || !(abs(v.y) <= RK_FLT_MAX) || !(abs(v.z) <= RK_FLT_MAX))
-        return fallback;
-    // Above 2^100, scale by 2^-100 first (exact): GLSL only specifies division by values up to 2^126.
-    if (m > 1.2676506e30f) {
-        v *= 7.8886091e-31f;
-        m *= 7.8886091e-31f;
-    }
-    vec3 p = v / m;
-    return p * inversesqrt(dot(p, p));
-}
-
 // ---------------------------------------------------------------------------------------------
 // Octahedral
 
 /// rk_gb_oct_encode: a direction -> p in [-1, 1]^2: p = (x, y) / (|x| + |y| + |z|), folded over
 /// the diagonals for z < 0 (z = -0 is not folded; on a fold, x = 0 or y = 0 goes to the + side).
-/// Domain: any finite vector (see rk_gb_normalize). Max error: dir -> p -> dir through
+/// Domain: any finite vector (see rk_normalize_safe in common.glsl). Max error: dir -> p -> dir through
 /// rk_gb_oct_decode within 3.5e-7 rad (10^7 random directions + rings through the poles, folds
 /// and equator: docs/deferred.md). Cost: 1 div, ~15 flops.
 RK_INLINE vec2 rk_gb_oct_encode(vec3 n)
@@ -117,10 +98,10 @@ RK_INLINE vec3 rk_gb_oct_decode(vec2 p)
 // Hemisphere remapping (the thesis's)
 
 /// rk_gb_hemi_encode: a direction -> its unit (x, y). Domain: any finite vector (zero -> +z, so
-/// (0, 0)). The sign of z is dropped: see the file comment. Cost: rk_gb_normalize.
+/// (0, 0)). The sign of z is dropped: see the file comment. Cost: rk_normalize_safe.
 RK_INLINE vec2 rk_gb_hemi_encode(vec3 n)
 {
-    vec3 u = rk_gb_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 u = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
     return vec2(u.x, u.y);
 }
 
@@ -145,10 +126,10 @@ RK_INLINE vec3 rk_gb_hemi_decode(vec2 e)
 /// -z); -z itself maps to (1, 0) on the rim. Domain: any finite vector (zero -> +z). Max error:
 /// dir -> p -> dir within 6e-6 rad for z > -0.99, 1.3e-3 rad near -z (float cannot resolve |p|
 /// near the rim: directions within ~1e-3 rad of -z share few values; docs/deferred.md).
-/// Cost: rk_gb_normalize + 1 div, 1 rsqrt.
+/// Cost: rk_normalize_safe + 1 div, 1 rsqrt.
 RK_INLINE vec2 rk_gb_lambert_encode(vec3 n)
 {
-    vec3 u = rk_gb_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 u = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
     if (u.z >= 0.0f) {
         float k = inversesqrt(2.0f + 2.0f * u.z);
         return vec2(u.x * k, u.y * k);
@@ -274,7 +255,7 @@ RK_INLINE vec3 rk_gb_oct_unpack_snorm(uint w, uint bits) { return rk_gb_oct_deco
 RK_INLINE uint rk_gb_oct_pack_snorm_precise(vec3 n, uint bits)
 {
     uint b = clamp(bits, 2u, 16u);
-    vec3 u = rk_gb_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 u = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
     vec2 p = rk_gb_oct_encode(u);
     float s = float((1u << (b - 1u)) - 1u);
     float fx = floor(rk_gb_clamp_unit(p.x) * s);
@@ -335,6 +316,16 @@ RK_INLINE float rk_gb_linear_depth(float d, vec3 k)
     float t = abs(k.z - dc);
     float q = t * k.x + (1.0f - t) * k.y;
     return q > 0.0f ? clamp(1.0f / q, RK_FLT_MIN, RK_FLT_MAX) : RK_FLT_MAX;
+}
+
+/// rk_gb_window_depth: the window depth of view distance `dist` (> 0) for k from
+/// rk_gb_depth_params (the inverse of rk_gb_linear_depth): t = (1/dist - 1/f) / (1/n - 1/f), d = 1 - t
+/// (usual) or t (reversed-Z), clamped to [0, 1]. Cost: 2 div, ~4 flops.
+RK_INLINE float rk_gb_window_depth(float dist, vec3 k)
+{
+    float inv = 1.0f / max(dist, RK_FLT_MIN);
+    float t = rk_saturate((inv - k.y) / max(k.x - k.y, RK_FLT_MIN));
+    return abs(k.z - t);
 }
 
 /// rk_gb_view_pos: the view-space position (camera at the origin looking down -z) of the pixel at

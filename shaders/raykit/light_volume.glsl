@@ -116,27 +116,17 @@ RK_INLINE vec4 rk_lv_sphere_ndc_rect(vec3 c, float r, vec4 proj, float near)
     return clamp(b, vec4(-1.0f), vec4(1.0f));
 }
 
-/// rk_lv_window_depth: the window depth of view distance `dist` (> 0) for k from
-/// rk_gb_depth_params (the inverse of rk_gb_linear_depth): t = (1/dist - 1/f) / (1/n - 1/f), d = 1 - t
-/// (usual) or t (reversed-Z), clamped to [0, 1]. Cost: 2 div, ~4 flops.
-RK_INLINE float rk_lv_window_depth(float dist, vec3 k)
-{
-    float inv = 1.0f / max(dist, RK_FLT_MIN);
-    float t = rk_saturate((inv - k.y) / max(k.x - k.y, RK_FLT_MIN));
-    return abs(k.z - t);
-}
-
 /// rk_lv_sphere_depth_range: the window-depth range (min, max) a sphere (view-space centre z `cz`,
 /// radius r) can occupy between the near and far planes of k (rk_gb_depth_params), for a
 /// depth-bounds test or conservative depth: its view distances [-(cz + r), -(cz - r)] clamped to
 /// [n, f]. A sphere behind the camera gives the near plane's depth twice. Cost: 2
-/// rk_lv_window_depth.
+/// rk_gb_window_depth.
 RK_INLINE vec2 rk_lv_sphere_depth_range(float cz, float r, vec3 k)
 {
     float dn = max(-(cz + max(r, 0.0f)), 0.0f);
     float df = max(-(cz - max(r, 0.0f)), 0.0f);
-    float a = rk_lv_window_depth(dn, k);
-    float b = rk_lv_window_depth(df, k);
+    float a = rk_gb_window_depth(dn, k);
+    float b = rk_gb_window_depth(df, k);
     return vec2(min(a, b), max(a, b));
 }
 

@@ -21,17 +21,6 @@
 
 #include "common.glsl"
 
-/// rk_nm_safe_normalize: v / |v|, or `fallback` when |v| is zero, denormal, NaN or overflows.
-/// Cost: 1 dot, 1 rsqrt, 2 compares.
-RK_INLINE vec3 rk_nm_safe_normalize(vec3 v, vec3 fallback)
-{
-    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
-    if (!(m >= 1e-18f) || !(m <= 1e18f) || !(abs(v.x) <= 1e18f) || !(abs(v.y) <= 1e18f) || !(abs(v.z) <= 1e18f))
-        return fallback;
-    vec3 p = v / m;
-    return p * inversesqrt(dot(p, p));
-}
-
 /// rk_nm_basis_tangent: a unit tangent perpendicular to unit n, continuous except across n.z = 0's
 /// sign flip (Duff et al., "Building an Orthonormal Basis, Revisited", 2017). The fallback when a
 /// mesh gives no usable tangent. Exact to float rounding for unit n. Cost: ~10 flops, 1 div.
@@ -50,13 +39,13 @@ RK_INLINE vec3 rk_nm_basis_tangent(vec3 n)
 /// as +1. Orthonormal to 2e-6 (two Gram-Schmidt steps). Cost: ~35 flops, 4 rsqrt.
 RK_INLINE mat3 rk_nm_tbn(vec3 n, vec4 t)
 {
-    vec3 nn = rk_nm_safe_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 nn = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
     vec3 tt = vec3(t.x, t.y, t.z);
-    vec3 tp = rk_nm_safe_normalize(tt - nn * dot(nn, tt), vec3(0.0f));
+    vec3 tp = rk_normalize_safe(tt - nn * dot(nn, tt), vec3(0.0f));
     // Within 0.26 degrees of n the tangent carries no usable direction: use the basis instead.
-    if (dot(tp, tp) == 0.0f || abs(dot(nn, rk_nm_safe_normalize(tt, nn))) > 0.99999f) tp = rk_nm_basis_tangent(nn);
+    if (dot(tp, tp) == 0.0f || abs(dot(nn, rk_normalize_safe(tt, nn))) > 0.99999f) tp = rk_nm_basis_tangent(nn);
     // A second Gram-Schmidt step: the first leaves a residue of rounding / sin(angle(t, n)).
-    tp = rk_nm_safe_normalize(tp - nn * dot(nn, tp), rk_nm_basis_tangent(nn));
+    tp = rk_normalize_safe(tp - nn * dot(nn, tp), rk_nm_basis_tangent(nn));
     float w = t.w < 0.0f ? -1.0f : 1.0f;
     vec3 b = cross(nn, tp) * w;
     return mat3(tp, b, nn);
@@ -65,7 +54,7 @@ RK_INLINE mat3 rk_nm_tbn(vec3 n, vec4 t)
 /// rk_nm_perturb: the shading normal of tangent-space normal `n_ts` (from a normal map) in the frame
 /// `tbn` (rk_nm_tbn or rk_nm_cotangent_frame), normalised; a zero n_ts gives the frame's N.
 /// Cost: 1 mat3 * vec3, 1 rsqrt.
-RK_INLINE vec3 rk_nm_perturb(mat3 tbn, vec3 n_ts) { return rk_nm_safe_normalize(tbn * n_ts, tbn[2]); }
+RK_INLINE vec3 rk_nm_perturb(mat3 tbn, vec3 n_ts) { return rk_normalize_safe(tbn * n_ts, tbn[2]); }
 
 /// rk_nm_unpack_rg: a two-channel normal map texel (BC5 / RG8, values in [0, 1]) -> unit tangent-
 /// space normal: xy = 2 rg - 1, z = sqrt(1 - x² - y²) >= 0 (outside the unit disk, after filtering
@@ -90,7 +79,7 @@ RK_INLINE vec3 rk_nm_unpack_rg(vec2 rg)
 /// Cost: 2 cross, ~20 flops, 1 rsqrt.
 RK_INLINE mat3 rk_nm_cotangent_frame(vec3 n, vec3 dp_dx, vec3 dp_dy, vec2 duv_dx, vec2 duv_dy)
 {
-    vec3 nn = rk_nm_safe_normalize(n, vec3(0.0f, 0.0f, 1.0f));
+    vec3 nn = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
     vec3 dp2perp = cross(dp_dy, nn);
     vec3 dp1perp = cross(nn, dp_dx);
     vec3 t = dp2perp * duv_dx.x + dp1perp * duv_dy.x;

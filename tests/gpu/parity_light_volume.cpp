@@ -34,9 +34,9 @@ TEST(GpuParity, LightVolume)
                   vec4 rc = rk_lv_sphere_ndc_rect(vec3(clamp(a[0], -8.0f, 8.0f), clamp(a[1], -8.0f, 8.0f), clamp(a[2], -8.0f, 8.0f)),
                                                   clamp(a[3], 0.0f, 6.0f), vec4(1.2f, 1.6f, 0.05f, -0.03f), 0.1f);
                   o[0] = rc.x; o[1] = rc.y; o[2] = rc.z; o[3] = rc.w;),
-        RK_PARITY("rk_lv_window_depth / rk_lv_sphere_depth_range", L, (coord(), radius(), dom::unit()), 5,
+        RK_PARITY("rk_gb_window_depth / rk_lv_sphere_depth_range", L, (coord(), radius(), dom::unit()), 5,
                   vec3 k = rk_gb_depth_params(0.1f, 50.0f, a[2] > 0.5f);
-                  o[0] = rk_lv_window_depth(abs(a[0]) + 0.1f, k);
+                  o[0] = rk_gb_window_depth(abs(a[0]) + 0.1f, k);
                   vec2 d = rk_lv_sphere_depth_range(a[0], a[1], k);
                   o[1] = d.x; o[2] = d.y;
                   vec2 di = rk_lv_sphere_depth_range(a[0], a[1], rk_gb_depth_params(0.1f, 0.0f, true));

@@ -28,7 +28,7 @@ TEST(GpuParity, NormalMap)
                   o[0] = f[0].x; o[1] = f[0].y; o[2] = f[0].z; o[3] = f[1].x; o[4] = f[1].y; o[5] = f[1].z;
                   o[6] = f[2].x; o[7] = f[2].y; o[8] = f[2].z; o[9] = p.x; o[10] = p.y; o[11] = p.z;),
         RK_PARITY("rk_nm_basis_tangent", M, (comp(), comp(), comp()), 3,
-                  vec3 n = rk_nm_safe_normalize(vec3(a[0], a[1], a[2]), vec3(0.0f, 0.0f, 1.0f));
+                  vec3 n = rk_normalize_safe(vec3(a[0], a[1], a[2]), vec3(0.0f, 0.0f, 1.0f));
                   vec3 t = rk_nm_basis_tangent(n);
                   o[0] = t.x; o[1] = t.y; o[2] = t.z;),
         RK_PARITY("rk_nm_cotangent_frame", M, (comp(), comp(), comp(), comp(), comp(), comp(), comp()), 9,
@@ -41,7 +41,7 @@ TEST(GpuParity, NormalMap)
                   vec3 n = rk_nm_unpack_rg(vec2(a[0], a[1]));
                   o[0] = n.x; o[1] = n.y; o[2] = n.z;),
         RK_PARITY("rk_nm_parallax_offset", M, (dom::unit(), dom::unit(), dom::unit(), comp(), comp()), 2,
-                  vec3 v = rk_nm_safe_normalize(vec3(a[3], a[4], 1.0f), vec3(0.0f, 0.0f, 1.0f));
+                  vec3 v = rk_normalize_safe(vec3(a[3], a[4], 1.0f), vec3(0.0f, 0.0f, 1.0f));
                   vec2 uv = rk_nm_parallax_offset(vec2(a[0], a[1]), a[2], v, 0.04f, -0.02f);
                   o[0] = uv.x; o[1] = uv.y;),
     };
