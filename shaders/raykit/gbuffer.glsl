@@ -40,9 +40,6 @@
 
 #include "common.glsl"
 
-/// rk_gb_sign_not_zero: +1 for x >= 0 (and +0, -0), -1 below. Exact. Cost: 1 select.
-RK_INLINE float rk_gb_sign_not_zero(float x) { return x >= 0.0f ? 1.0f : -1.0f; }
-
 /// rk_gb_clamp_unit: x clamped to [-1, 1], NaN -> 0 (clamp leaves NaN undefined). Cost: 2 selects.
 RK_INLINE float rk_gb_clamp_unit(float x) { return x >= -1.0f ? min(x, 1.0f) : (x < -1.0f ? -1.0f : 0.0f); }
 
@@ -68,10 +65,9 @@ RK_INLINE vec2 rk_gb_oct_encode(vec3 n)
     float u = p.x / l1;
     float v = p.y / l1;
     if (p.z < 0.0f) {
-        float fu = (1.0f - abs(v)) * rk_gb_sign_not_zero(u);
-        float fv = (1.0f - abs(u)) * rk_gb_sign_not_zero(v);
-        u = fu;
-        v = fv;
+        vec2 f = rk_oct_fold(u, v);
+        u = f.x;
+        v = f.y;
     }
     return vec2(u, v);
 }
@@ -85,10 +81,9 @@ RK_INLINE vec3 rk_gb_oct_decode(vec2 p)
     float v = rk_gb_clamp_unit(p.y);
     float z = 1.0f - abs(u) - abs(v);
     if (z < 0.0f) {
-        float fu = (1.0f - abs(v)) * rk_gb_sign_not_zero(u);
-        float fv = (1.0f - abs(u)) * rk_gb_sign_not_zero(v);
-        u = fu;
-        v = fv;
+        vec2 f = rk_oct_fold(u, v);
+        u = f.x;
+        v = f.y;
     }
     vec3 d = vec3(u, v, z);
     return d * inversesqrt(max(dot(d, d), RK_FLT_MIN));

@@ -277,10 +277,9 @@ RK_INLINE uint rk_svo_pack_normal(vec3 n)
     float u = p.x / s;
     float v = p.y / s;
     if (p.z < 0.0f) {
-        float ou = (1.0f - abs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
-        float ov = (1.0f - abs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
-        u = ou;
-        v = ov;
+        vec2 f = rk_oct_fold(u, v);
+        u = f.x;
+        v = f.y;
     }
     return rk_svo_pack_snorm16(u) | (rk_svo_pack_snorm16(v) << 16u);
 }
@@ -294,10 +293,9 @@ RK_INLINE vec3 rk_svo_unpack_normal(uint w)
     float v = rk_svo_unpack_snorm16(w >> 16u);
     float z = 1.0f - abs(u) - abs(v);
     if (z < 0.0f) {
-        float ou = (1.0f - abs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
-        float ov = (1.0f - abs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
-        u = ou;
-        v = ov;
+        vec2 f = rk_oct_fold(u, v);
+        u = f.x;
+        v = f.y;
     }
     vec3 d = vec3(u, v, z);
     return d * inversesqrt(max(dot(d, d), RK_FLT_MIN));

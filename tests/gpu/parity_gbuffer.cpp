@@ -43,6 +43,10 @@ TEST(GpuParity, Gbuffer)
                                vec3 d = rk_gb_oct_decode(p);
                                o[0] = p.x; o[1] = p.y; o[2] = d.x; o[3] = d.y; o[4] = d.z;),
                      {}});
+    cases.push_back({RK_PARITY_X("rk_oct_fold (common.glsl)", G, (any(), any()), 2,
+                                 vec2 f = rk_oct_fold(a[0], a[1]);
+                                 o[0] = f.x; o[1] = f.y;),
+                     {0, 1}});
     cases.push_back({RK_PARITY_X("rk_gb_oct_decode (any p)", G, (any(), any()), 3,
                                vec3 d = rk_gb_oct_decode(vec2(a[0], a[1]));
                                o[0] = d.x; o[1] = d.y; o[2] = d.z;),
