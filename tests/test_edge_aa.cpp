@@ -49,13 +49,11 @@ Gbuf render(int w, int h, SvoDepthConvention conv)
             const dvec3 oc = eye - sc;
             const double b = glm::dot(oc, dir), c = glm::dot(oc, oc) - sr * sr, disc = b * b - c;
             if (disc > 0.0) { const double ts = -b - std::sqrt(disc); if (ts > 0.0 && ts < t) { t = ts; id = 2; n = glm::normalize(eye + ts * dir - sc); } }
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
             g.id.push_back(id);
             g.normal.push_back(vec3(n));
             float d = conv == SvoDepthConvention::reversed_zero_to_one ? 0.0f : 1.0f;
             if (id >= 0) d = rk_svo_window_depth(mat4(vp), vec3(eye + t * dir), conv == SvoDepthConvention::gl_minus_one_to_one ? vec2(0.5f, 0.5f) : vec2(1.0f, 0.0f));
             g.depth.push_back(d);
-            (void)i;
         }
     return g;
 }

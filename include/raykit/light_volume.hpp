@@ -51,6 +51,13 @@ inline void circumscribe_unit_ball(LightVolumeMesh& m)
     const double s = (1.0 / min_d) * (1.0 + 4e-7);
     for (vec3& p : m.positions) p = vec3(glm::dvec3(p) * s);
 }
+/// The side count and half-angle light_volume_cone builds with (and light_volume_cull_cone tests
+/// against): segments clamped to 3..256, the angle to [1e-4 rad, 80 degrees].
+inline int cone_segments(int segments) { return std::min(std::max(segments, 3), 256); }
+inline double cone_half_angle(float half_angle)
+{
+    return std::min(std::max(static_cast<double>(half_angle), 1e-4), 80.0 * 3.14159265358979323846 / 180.0);
+}
 }  // namespace detail
 
 /// light_volume_sphere: a convex mesh containing the unit ball, for point lights (scale it by the
@@ -100,9 +107,9 @@ inline LightVolumeMesh light_volume_sphere(int subdivisions = 1)
 inline LightVolumeMesh light_volume_cone(int segments, float half_angle)
 {
     LightVolumeMesh m;
-    const int n = std::min(std::max(segments, 3), 256);
+    const int n = detail::cone_segments(segments);
     const double pi = 3.14159265358979323846;
-    const double a = std::min(std::max(static_cast<double>(half_angle), 1e-4), 80.0 * pi / 180.0);
+    const double a = detail::cone_half_angle(half_angle);
     const double R = std::tan(a) / std::cos(pi / n) * (1.0 + 4e-7);
     m.positions.push_back(vec3(0.0f));
     for (int i = 0; i < n; ++i) {
@@ -158,8 +165,8 @@ inline LightVolumeCull light_volume_cull_cone(vec3 apex, vec3 axis, float range,
                                               float reach)
 {
     const double pi = 3.14159265358979323846;
-    const int n = std::min(std::max(segments, 3), 256);
-    const double a = std::min(std::max(static_cast<double>(half_angle), 1e-4), 80.0 * pi / 180.0);
+    const int n = detail::cone_segments(segments);
+    const double a = detail::cone_half_angle(half_angle);
     const double h = std::max(static_cast<double>(range), 0.0) * (1.0 + 1e-6);
     const double R = h * std::tan(a) / std::cos(pi / n) * (1.0 + 1e-6);
     const glm::dvec3 u = glm::normalize(glm::dvec3(axis)), p = glm::dvec3(eye) - glm::dvec3(apex);
