@@ -1026,6 +1026,30 @@ def interior_summary(out_dir, page="benchmarks_interior.md", heading=True):
     return md
 
 
+def deferred_summary(out_dir):
+    """Forward against deferred frame time by light count, quoted from benchmarks_deferred.md
+    (written by scripts/bench_deferred.sh from samples/deferred_city --bench)."""
+    md = ["## Deferred shading: forward against deferred by light count, G-buffer bytes per pixel", ""]
+    md.append("Whole frames of the deferred city on the GL driver ([benchmarks_deferred.md](benchmarks_deferred.md), "
+              "`bash scripts/bench_deferred.sh`; what they show: [deferred.md](deferred.md)).")
+    md.append("")
+    path = os.path.join(out_dir, "benchmarks_deferred.md")
+    if not os.path.exists(path):
+        md.append("(Not measured yet: run `bash scripts/bench_deferred.sh`.)")
+        md.append("")
+        return md
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    start = next((i for i, l in enumerate(lines) if l.startswith("**Renderer")), None)
+    end = next((i for i, l in enumerate(lines) if l.startswith("What the data show")), len(lines))
+    if start is None:
+        md.append("(benchmarks_deferred.md has no results.)")
+        md.append("")
+        return md
+    md.extend(lines[start:end])
+    return md
+
+
 def svo_gl_gpu_summary(out_dir):
     """The GPU frame times and ray rates of the voxel pass, quoted from benchmarks_svo_gl_gpu.md (a
     run of bench_svo_gl on a GPU by scripts/bench_gpu.sh, reported by scripts/bench_svo_gl.sh)."""
@@ -1206,6 +1230,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=(), consecutive=
         md.append("")
     md.extend(interior_summary(out_dir))
     md.extend(svo_trace_summary(out_dir))
+    md.extend(deferred_summary(out_dir))
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))
