@@ -186,6 +186,9 @@ struct SuiteInfo {
     // Goals the report checks, ';'-separated "<row>|<max abs err>|<max relative cost>|<what>", e.g.
     // "BM_fresnel/poly/eta:1.52|0.005|1.3|glass"; the report says met or missed with both numbers.
     std::string goals = {};
+    // The error the speed-vs-error plot's x axis shows: "max" (default) or "mean" (where every row's
+    // maximum sits at the same few hard points, e.g. shadow edges, and the mean tells them apart).
+    std::string plot_error = "max";
 };
 
 struct Suite {

@@ -6,7 +6,7 @@
 //   raykit_inputs_per_iteration, raykit_sweep_points
 //   raykit_suites                            the suites' names, in report order
 //   raykit_suite:<s>:<field>                 title, source, unit, baseline, families (in order),
-//                                            plot_families, about, gpu, goals (see rkbench::SuiteInfo)
+//                                            plot_families, about, gpu, goals, plot_error (see rkbench::SuiteInfo)
 //   raykit_family:<family>                   a family's title
 //   raykit_baseline, raykit_plot_families    the first suite's baseline and the union of every
 //                                            suite's plot families (read by older reports)
@@ -75,6 +75,7 @@ int main(int argc, char** argv)
         benchmark::AddCustomContext(key + "about", in.about);
         benchmark::AddCustomContext(key + "gpu", in.gpu);
         benchmark::AddCustomContext(key + "goals", in.goals);
+        benchmark::AddCustomContext(key + "plot_error", in.plot_error);
     }
     benchmark::AddCustomContext("raykit_suites", join(names));
     if (!suites.empty()) benchmark::AddCustomContext("raykit_baseline", suites.front().info.baseline);

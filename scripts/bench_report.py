@@ -237,6 +237,7 @@ class Suite:
         self.unit = context.get(key + "unit", "call")
         self.about = context.get(key + "about", "")
         self.gpu = context.get(key + "gpu", "")
+        self.plot_error = "mean" if context.get(key + "plot_error") == "mean" else "max"
         if legacy:
             baseline_name = context.get("raykit_baseline", DEFAULT_BASELINE)
             listed_plot = context.get("raykit_plot_families")
@@ -481,9 +482,10 @@ def write_plot(context, suite, img_dir):
     blocks, panels = [], []
     for fam in fams:
         pts = [r for r in suite.family_rows(fam) if plottable(r)]
-        errs = [r.max_abs for r in pts if r.max_abs > 0]
+        err = (lambda r: r.mean_abs or 0.0) if suite.plot_error == "mean" else (lambda r: r.max_abs)
+        errs = [err(r) for r in pts if err(r) > 0]
         floor = min(errs) / 2 if errs else 1e-9
-        xs = [max(r.max_abs, floor) for r in pts]
+        xs = [max(err(r), floor) for r in pts]
         ys = [r.ns for r in pts]
         xlo = 10 ** math.floor(math.log10(min(xs)) - 0.3)
         xhi = 10 ** math.ceil(math.log10(max(xs)) + 0.3)
@@ -492,7 +494,8 @@ def write_plot(context, suite, img_dir):
         texts = point_labels(pts)
         labels = layout_labels(list(zip(xs, ys, texts)), xlo, xhi, ylo, yhi, plot_w_px, plot_h_px)
         lines = ["# family %s: %s" % (fam, family_title(context, fam)),
-                 "# max_abs_err ns_per_call label_x label_y align(0 left, 1 right) label cross(1: error vs another formula)"]
+                 "# %s_abs_err ns_per_call label_x label_y align(0 left, 1 right) label cross(1: error vs another formula)"
+                 % suite.plot_error]
         for x, y, r, text, (lx, ly, align) in zip(xs, ys, pts, texts, labels):
             lines.append("%.6e %.6f %.6e %.6f %d \"%s\" %d" % (
                 x, y, lx, ly, 0 if align == "left" else 1, text, 1 if "cross" in r.flags else 0))
@@ -515,13 +518,14 @@ def write_plot(context, suite, img_dir):
     g.append("set terminal pngcairo size %d,%d font 'Sans,10' enhanced" % (panel_w * ncols, panel_h * nrows))
     g.append("set output '%s'" % q(png_path))
     g.append("set multiplot layout %d,%d title '%s' font 'Sans,13' noenhanced" % (nrows, ncols, q(
-        "raykit %s: CPU time per %s vs max abs error (median of repetitions; CPU times are ratios only)"
-        % (suite.short_name(), suite.unit))))
+        "raykit %s: CPU time per %s vs %s abs error (median of repetitions; CPU times are ratios only)"
+        % (suite.short_name(), suite.unit, suite.plot_error))))
     g.append("set logscale xy")
     g.append("set format x '10^{%L}'")
     g.append("set grid xtics ytics mytics lc rgb '#dddddd'")
     g.append("set ytics (0.5, 1, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200, 300, 500, 1000)")
-    g.append("set xlabel 'max abs error vs float64 reference (log scale)'")
+    g.append("set xlabel '%s abs error vs %s (log scale)'" % (
+        suite.plot_error, "the exact reference" if suite.plot_error == "mean" else "float64 reference"))
     g.append("set ylabel 'ns / %s (CPU, log scale)'" % q(suite.unit))
     g.append("set tmargin 3")
     dat = q(dat_path)
