@@ -25,6 +25,7 @@
 #include "raykit/shadow.hpp"
 #include "raykit/shadow_filter.hpp"
 #include "raykit/status.hpp"
+#include "raykit/ssao.hpp"
 #include "raykit/svo_build.hpp"
 #include "raykit/svo_file.hpp"
 #include "raykit/svo_format.hpp"
