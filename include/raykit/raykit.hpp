@@ -18,6 +18,7 @@
 #include "raykit/interior_params.hpp"
 #include "raykit/interior_surface.hpp"
 #include "raykit/light_volume.hpp"
+#include "raykit/lightshafts.hpp"
 #include "raykit/normalmap.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/shader_define.hpp"
