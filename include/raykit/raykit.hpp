@@ -21,6 +21,7 @@
 #include "raykit/lightshafts.hpp"
 #include "raykit/normalmap.hpp"
 #include "raykit/paraboloid.hpp"
+#include "raykit/relief.hpp"
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/shadow.hpp"
