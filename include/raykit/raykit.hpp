@@ -22,6 +22,7 @@
 #include "raykit/normalmap.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/relief.hpp"
+#include "raykit/ray.hpp"
 #include "raykit/shader_define.hpp"
 #include "raykit/shader_source.hpp"
 #include "raykit/shadow.hpp"
