@@ -1030,16 +1030,13 @@ def interior_summary(out_dir, page="benchmarks_interior.md", heading=True):
     return md
 
 
-def deferred_summary(out_dir):
-    """Forward against deferred frame time by light count, quoted from benchmarks_deferred.md
-    (written by scripts/bench_deferred.sh from samples/deferred_city --bench)."""
-    md = ["## Deferred shading: forward against deferred by light count, G-buffer bytes per pixel", ""]
-    md.append("Whole frames of the deferred city on the GL driver ([benchmarks_deferred.md](benchmarks_deferred.md), "
-              "`bash scripts/bench_deferred.sh`; what they show: [deferred.md](deferred.md)).")
-    md.append("")
-    path = os.path.join(out_dir, "benchmarks_deferred.md")
+def quoted_summary(out_dir, page, heading, intro, script):
+    """A driver benchmark's results quoted from its own page (written by `script`): from its
+    **Renderer** line to the line before "What the data show" (or the end)."""
+    md = ["## " + heading, "", intro, ""]
+    path = os.path.join(out_dir, page)
     if not os.path.exists(path):
-        md.append("(Not measured yet: run `bash scripts/bench_deferred.sh`.)")
+        md.append("(Not measured yet: run `bash %s`.)" % script)
         md.append("")
         return md
     with open(path, encoding="utf-8") as f:
@@ -1047,12 +1044,34 @@ def deferred_summary(out_dir):
     start = next((i for i, l in enumerate(lines) if l.startswith("**Renderer")), None)
     end = next((i for i, l in enumerate(lines) if l.startswith("What the data show")), len(lines))
     if start is None:
-        md.append("(benchmarks_deferred.md has no results.)")
+        md.append("(%s has no results.)" % page)
         md.append("")
         return md
     md.extend(lines[start:end])
     return md
 
+
+def deferred_summary(out_dir):
+    """Forward against deferred frame time by light count (benchmarks_deferred.md, written by
+    scripts/bench_deferred.sh from samples/deferred_city --bench)."""
+    return quoted_summary(
+        out_dir, "benchmarks_deferred.md",
+        "Deferred shading: forward against deferred by light count, G-buffer bytes per pixel",
+        "Whole frames of the deferred city on the GL driver ([benchmarks_deferred.md](benchmarks_deferred.md), "
+        "`bash scripts/bench_deferred.sh`; what they show: [deferred.md](deferred.md)).",
+        "scripts/bench_deferred.sh")
+
+
+def volumes_summary(out_dir):
+    """The thesis's volume protocol (benchmarks_volumes.md, written by scripts/bench_volumes.sh from
+    samples/effects --bench)."""
+    return quoted_summary(
+        out_dir, "benchmarks_volumes.md",
+        "Volumes: billboards, slices and raytraced soft particles (the thesis's protocol)",
+        "Whole frames on the GL driver as ratios to the billboard frame, next to van Dongen's figure 6.23 "
+        "([benchmarks_volumes.md](benchmarks_volumes.md), `bash scripts/bench_volumes.sh`; what they show: "
+        "[volume.md](volume.md)).",
+        "scripts/bench_volumes.sh")
 
 def svo_gl_gpu_summary(out_dir):
     """The GPU frame times and ray rates of the voxel pass, quoted from benchmarks_svo_gl_gpu.md (a
@@ -1235,6 +1254,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=(), consecutive=
     md.extend(interior_summary(out_dir))
     md.extend(svo_trace_summary(out_dir))
     md.extend(deferred_summary(out_dir))
+    md.extend(volumes_summary(out_dir))
     md.append("## Machine")
     md.append("")
     md.extend(machine_table(context, rows))

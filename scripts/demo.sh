@@ -4,7 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build --target fresnel_curves tonemap_gallery city svo_demo deferred_city -j"$(nproc)"
+cmake --build build --target fresnel_curves tonemap_gallery city svo_demo deferred_city effects -j"$(nproc)"
 mkdir -p out
 ./build/samples/fresnel_curves out/fresnel_curves.png
 ./build/samples/tonemap_gallery out/tonemap_gallery.png
@@ -17,4 +17,7 @@ mkdir -p out
 # The deferred city: day (cascaded shadows), cascades, night (street lamps as light volumes) and the
 # forward-against-deferred comparison (out/deferred_*.png).
 ./build/samples/deferred_city out
+# The effects: smoke as billboards, slices and raytraced volumes; SSAO; relief mapping; light shafts
+# (out/effects_*.png).
+./build/samples/effects out
 echo "demo: wrote $(ls out/*.png | tr '\n' ' ')"

@@ -38,4 +38,5 @@
 #include "raykit/svo_traverse.hpp"
 #include "raykit/tangents.hpp"
 #include "raykit/tonemap.hpp"
+#include "raykit/volume.hpp"
 #include "raykit/window_glass.hpp"
