@@ -5,7 +5,9 @@
 // buildings", §6.3.2).
 //
 // Every rk_* function below is compiled from the very same text the GPU runs (docs/dialect.md);
-// tests/gpu/parity_volume.cpp checks that both builds agree on a real driver.
+// tests/gpu/parity_volume.cpp checks that both builds agree on a real driver. rk_vol_density is
+// the C++ twin of the density texture read (trilinear, clamp to edge); rk_vol_march_box lives in an
+// inline namespace named after RK_VOL_MAX_STEPS, so two translation units may choose differently.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +19,48 @@
 #include "raykit/ray.hpp"
 
 namespace raykit {
+
+/// A density volume on the CPU: w x h x d values, x fastest, slice z = 0 first (GL's 3-D upload
+/// order).
+struct VolDensityCpu {
+    int w = 0, h = 0, d = 0;
+    std::vector<float> v;
+    float at(int x, int y, int z) const
+    {
+        x = std::min(std::max(x, 0), w - 1);
+        y = std::min(std::max(y, 0), h - 1);
+        z = std::min(std::max(z, 0), d - 1);
+        return v[(static_cast<size_t>(z) * static_cast<size_t>(h) + static_cast<size_t>(y)) * static_cast<size_t>(w) + static_cast<size_t>(x)];
+    }
+};
+
+/// rk_vol_density (C++ twin of textureLod(sampler3D, uvw, 0).x with LINEAR filtering and clamp to
+/// edge): the trilinear blend of the 8 texels around uvw, texel centres at (i + 0.5) / size. An
+/// empty volume and NaN coordinates read 0.
+inline float rk_vol_density(const VolDensityCpu& m, vec3 uvw)
+{
+    if (m.w <= 0 || m.h <= 0 || m.d <= 0 || m.v.size() < static_cast<size_t>(m.w) * static_cast<size_t>(m.h) * static_cast<size_t>(m.d))
+        return 0.0f;
+    const double f[3] = {static_cast<double>(uvw.x) * m.w - 0.5, static_cast<double>(uvw.y) * m.h - 0.5, static_cast<double>(uvw.z) * m.d - 0.5};
+    const int size[3] = {m.w, m.h, m.d};
+    int i0[3];
+    float a[3];
+    for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(f[k])) return 0.0f;
+        const double c = std::min(std::max(f[k], -1.0), static_cast<double>(size[k]));
+        i0[k] = static_cast<int>(std::floor(c));
+        a[k] = static_cast<float>(c - i0[k]);
+    }
+    float r = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+        const float wgt = (dx ? a[0] : 1.0f - a[0]) * (dy ? a[1] : 1.0f - a[1]) * (dz ? a[2] : 1.0f - a[2]);
+        r += wgt * m.at(i0[0] + dx, i0[1] + dy, i0[2] + dz);
+    }
+    return r;
+}
+
+#define RK_VOL_DENSITY_MAP const VolDensityCpu&
 #include "raykit/volume.glsl"
 
 /// One slice of a slice stack: its offset from the centre along the view axis (towards the eye

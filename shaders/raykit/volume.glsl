@@ -12,17 +12,46 @@
 // (rk_ray_sphere), and beyond it the box and the ellipsoid (rk_ray_box, rk_ray_ellipsoid of
 // ray.glsl, used as they are).
 //
+// Non-uniform density: rk_vol_optical_depth_falloff (a radial falloff, exact), or a bounded march
+// through a density texture, rk_vol_march_box, read through rk_vol_density(map, uvw): in GLSL
+// textureLod(sampler3D, uvw, 0).x (LINEAR, CLAMP_TO_EDGE), in C++ the trilinear twin of
+// volume.hpp's VolDensityCpu.
+//
 // Shared GLSL/C++ source (include/raykit/volume.hpp is the C++ build, with the slice layout
 // generator).
 //
+// Features (compile time):
+//   RK_VOL_MAX_STEPS (default 64, a plain integer in 1..1024): the loop bound of rk_vol_march_box.
+//
+// @rk-variants RK_VOL_MAX_STEPS=64 | RK_VOL_MAX_STEPS=8
 // @rk-es 310
-// @rk-es300
 #ifndef RK_VOLUME_GLSL
 #define RK_VOLUME_GLSL
+
+#ifdef __cplusplus
+#define RK_NS_VOLUME RK_PP_CAT(volume_steps, RK_VOL_MAX_STEPS)
+#endif
 
 #include "common.glsl"
 #include "gbuffer.glsl"
 #include "ray.glsl"
+
+#ifndef RK_VOL_MAX_STEPS
+#define RK_VOL_MAX_STEPS 64
+#endif
+#if RK_VOL_MAX_STEPS < 1 || RK_VOL_MAX_STEPS > 1024
+#error "RK_VOL_MAX_STEPS must be in 1..1024"
+#endif
+RK_OPTION_CHECK(rk_option_vol_max_steps, RK_VOL_MAX_STEPS);
+
+#ifndef __cplusplus
+#ifdef GL_ES
+precision highp sampler3D;
+#endif
+#define RK_VOL_DENSITY_MAP sampler3D
+/// rk_vol_density: the density texture's first channel at uvw (level 0; the sampler's filter).
+RK_INLINE float rk_vol_density(sampler3D m, vec3 uvw) { return textureLod(m, uvw, 0.0f).x; }
+#endif
 
 // ---------------------------------------------------------------------------------------------
 // Spans
@@ -220,5 +249,41 @@ RK_INLINE float rk_vol_slice_alpha(float a, uint n)
     if (y < 0.1f) return y * (1.0f - y * (0.5f - y * (1.0f / 6.0f - y * (1.0f / 24.0f - y / 120.0f))));
     return 1.0f - exp(-y);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Non-uniform density: a bounded march
+
+RK_CONFIGURED_BEGIN(RK_NS_VOLUME)
+
+/// rk_vol_march_box: the optical depth sigma · integral of the density along the unit ray o + t dir
+/// over [t0, t1] (e.g. the visible part: max(t_near, 0) to the scene's distance), where a density
+/// texture fills the axis-aligned box [lo, hi] (texture coordinates (p - lo) / (hi - lo); zero
+/// outside the box): the part of [t0, t1] inside the box (rk_ray_box) is cut into n equal steps
+/// (n = steps clamped to 1..RK_VOL_MAX_STEPS) and each step reads the density once at its fraction
+/// `jitter` (0.5: the midpoint rule, exact for a density linear along the ray; a per-pixel value in
+/// [0, 1) turns the steps' banding into noise). Densities below 0 (or NaN) read as 0. Use with
+/// rk_vol_opacity_beer(tau, 1). Cost: n texture reads + rk_ray_box.
+RK_INLINE float rk_vol_march_box(RK_VOL_DENSITY_MAP m, vec3 o, vec3 dir, vec3 lo, vec3 hi, float t0, float t1, float sigma, uint steps,
+                                 float jitter)
+{
+    vec2 span = rk_ray_box(o, dir, lo, hi);
+    float a = max(max(t0, span.x), -RK_FLT_MAX);
+    float b = min(min(t1, span.y), RK_FLT_MAX);
+    if (!(b > a)) return 0.0f;
+    uint n = clamp(steps, 1u, uint(RK_VOL_MAX_STEPS));
+    float dt = (b - a) / float(n);
+    float j = jitter >= 0.0f ? min(jitter, 1.0f) : 0.5f;
+    vec3 ext = max(hi - lo, vec3(RK_FLT_MIN));
+    float sum = 0.0f;
+    for (uint i = 0u; i < uint(RK_VOL_MAX_STEPS); ++i) {
+        if (i >= n) break;
+        vec3 p = rk_ray_clamp3_(o + dir * (a + (float(i) + j) * dt));
+        float d = rk_vol_density(m, rk_ray_clamp3_((p - lo) / ext));
+        sum += d > 0.0f ? min(d, RK_FLT_MAX) : 0.0f;
+    }
+    return clamp(max(sigma, 0.0f) * sum * dt, 0.0f, RK_FLT_MAX);
+}
+
+RK_CONFIGURED_END
 
 #endif  // RK_VOLUME_GLSL
