@@ -3,10 +3,15 @@
 // penumbra width against the geometry of a spherical light over a plane, cascade splits, the
 // texel-snapped cascade fit (sub-texel camera moves leave the texel grid fixed in world space, and
 // the box contains the slice), and the sample patterns (inside the disk, stratified, spaced,
-// deterministic).
+// deterministic); for point lights, the cube-map face rule against GL's table and the faces'
+// projections, the distance compare, the dual-paraboloid lookup and the texel widths against float64
+// geometry, and every omnidirectional function on NaN, infinities and degenerate ranges.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -21,6 +26,13 @@ using glm::dvec3;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+/// One unit in the last place of the float nearest |x| (at least that of the smallest normal).
+double ulp_at(double x)
+{
+    const float f = std::max(float(std::abs(x)), std::numeric_limits<float>::min());
+    return double(std::nextafter(f, std::numeric_limits<float>::infinity())) - double(f);
+}
 
 TEST(Shadow, BiasAndShadowMatrix)
 {
@@ -280,6 +292,274 @@ TEST(Shadow, CubeMapReferenceDepthMatchesTheFaceProjection)
     EXPECT_NEAR(rk_sh_cube_ref_depth(vec3(0, 0, -n), n, f), 0.0f, 1e-7f);
     EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_depth(vec3(0.0f), n, f)));
     EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_depth(vec3(1.0f), 0.0f, 0.0f)));
+    // Degenerate inputs: NaN, infinities, n >= f, the largest floats.
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    for (const vec3& v : {vec3(nan), vec3(inf, -inf, 1.0f), vec3(3.4028235e38f), vec3(-3.4028235e38f, 0.0f, 1.0f), vec3(1e-40f)})
+        for (const glm::vec2& nf : {glm::vec2(n, f), glm::vec2(f, n), glm::vec2(nan, nan), glm::vec2(inf, -inf), glm::vec2(3.4028235e38f)}) {
+            EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_depth(v, nf.x, nf.y))) << v.x << " " << nf.x << " " << nf.y;
+            EXPECT_TRUE(std::isfinite(rk_sh_cube_ref_distance(v, nf.x, nf.y))) << v.x << " " << nf.x << " " << nf.y;
+        }
+    EXPECT_NEAR(rk_sh_cube_ref_depth(vec3(0.0f, 1e30f, 0.0f), n, f), double(f) / (double(f) - n), 1e-6) << "the limit beyond 1e18";
+}
+
+/// A float vector from a float64 one, each component rounded to float. Not inlined: at -O2/-O3,
+/// GCC 12.2's vectoriser was seen to use the unrounded float64 values of an inlined conversion
+/// later in the loop (a float member read back with 53 bits; right with -fno-tree-vectorize or
+/// -fsanitize=undefined), which made the float64 references disagree with the inputs.
+[[gnu::noinline]] vec3 to_float(const dvec3& d) { return vec3(float(d.x), float(d.y), float(d.z)); }
+
+/// The GL cube-map table (GL 4.6 Table 8.19) in float64: the face of v and its (s, t).
+glm::dvec3 gl_cube_face_uv(dvec3 v)
+{
+    const dvec3 a = glm::abs(v);
+    int ax = 0;
+    if (!(a.x >= a.y && a.x >= a.z)) ax = a.y >= a.z ? 1 : 2;
+    double sc = 0.0, tc = 0.0, face = 0.0;
+    if (ax == 0) {
+        face = v.x < 0.0 ? 1.0 : 0.0;
+        sc = v.x < 0.0 ? v.z : -v.z;
+        tc = -v.y;
+    } else if (ax == 1) {
+        face = v.y < 0.0 ? 3.0 : 2.0;
+        sc = v.x;
+        tc = v.y < 0.0 ? -v.z : v.z;
+    } else {
+        face = v.z < 0.0 ? 5.0 : 4.0;
+        sc = v.z < 0.0 ? -v.x : v.x;
+        tc = -v.y;
+    }
+    return glm::dvec3(0.5 * (sc / a[ax] + 1.0), 0.5 * (tc / a[ax] + 1.0), face);
+}
+
+TEST(Shadow, OmniDistanceTowardTheLightAndSanitising)
+{
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(rk_sh_finite(nan), 0.0f);
+    EXPECT_EQ(rk_sh_finite(inf), 3.4028235e38f);
+    EXPECT_EQ(rk_sh_finite(-inf), -3.4028235e38f);
+    EXPECT_EQ(rk_sh_finite(-2.5f), -2.5f);
+    EXPECT_EQ(rk_sh_finite(1e-40f), 1e-40f);
+    std::mt19937 rng(31u);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(-60.0, 58.0), ul(0.0, 1.0);
+    double worst_d = 0.0, worst_t = 0.0, worst_tv = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 v = to_float(dvec3(u(rng), u(rng), u(rng)) * std::exp2(e(rng)));
+        const dvec3 vd(v);
+        const double len = glm::length(vd);
+        worst_d = std::max(worst_d, std::abs(double(rk_sh_omni_distance(v)) - len) / ulp_at(len));
+        const float b = float(ul(rng) * len);
+        const dvec3 want = vd * (1.0 - double(b) / len);
+        const vec3 got = rk_sh_omni_toward_light(v, b);
+        worst_tv = std::max(worst_tv, glm::length(dvec3(got) - want) / ulp_at(len));
+        if (double(b) <= 0.5 * len)
+            for (int k = 0; k < 3; ++k) worst_t = std::max(worst_t, std::abs(double(got[k]) - want[k]) / ulp_at(want[k]));
+    }
+    std::printf("rk_sh_omni_distance %.2f ulp; rk_sh_omni_toward_light %.2f ulp per component (bias <= |v|/2), %.2f ulp of |v|\n", worst_d,
+                worst_t, worst_tv);
+    EXPECT_LE(worst_d, 2.4);
+    EXPECT_LE(worst_t, 4.5);
+    EXPECT_LE(worst_tv, 2.2);
+    // Edge cases.
+    EXPECT_EQ(rk_sh_omni_distance(vec3(0.0f)), 0.0f);
+    EXPECT_EQ(rk_sh_omni_distance(vec3(1e-40f, -1e-39f, 0.0f)), 0.0f) << "denormals count as zero";
+    EXPECT_EQ(rk_sh_omni_distance(vec3(3.0f, -4.0f, 0.0f)), 5.0f);
+    EXPECT_EQ(rk_sh_omni_distance(vec3(3.4028235e38f)), 1e18f) << "capped";
+    EXPECT_EQ(rk_sh_omni_distance(vec3(nan, 3.0f, 4.0f)), 5.0f) << "NaN counts as 0";
+    EXPECT_EQ(rk_sh_omni_distance(vec3(inf, 0.0f, 0.0f)), 1e18f);
+    const vec3 v(0.3f, -2.0f, 1.7f);
+    EXPECT_EQ(rk_sh_omni_toward_light(v, 0.0f), v) << "no bias, no move";
+    EXPECT_EQ(rk_sh_omni_toward_light(v, nan), v) << "a NaN bias counts as 0";
+    EXPECT_EQ(rk_sh_omni_toward_light(v, -1.0f), v) << "negative biases clamp to 0";
+    EXPECT_EQ(rk_sh_omni_toward_light(v, 100.0f), vec3(0.0f)) << "never past the light";
+    EXPECT_EQ(rk_sh_omni_toward_light(vec3(0.0f), 1.0f), vec3(0.0f));
+    EXPECT_TRUE(rktest::adv::finite(rk_sh_omni_toward_light(vec3(inf, nan, -inf), inf)));
+}
+
+TEST(Shadow, CubeFaceUvIsTheGlRuleAndTheFaceRender)
+{
+    // Against the GL table in float64, and against the render of each face: lookAt(0, axis, up)
+    // with up = -y for the side faces, +z for +Y, -z for -Y, and a 90-degree perspective: the
+    // face's NDC (x, y) is (2 s - 1, 2 t - 1), so window row 0 is t = 0.
+    const dvec3 axes[6] = {dvec3(1, 0, 0), dvec3(-1, 0, 0), dvec3(0, 1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1)};
+    const dvec3 ups[6] = {dvec3(0, -1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1), dvec3(0, -1, 0), dvec3(0, -1, 0)};
+    const glm::dmat4 proj = glm::perspective(glm::radians(90.0), 1.0, 0.05, 80.0);
+    std::mt19937 rng(5u);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(-40.0, 40.0);
+    double worst_table = 0.0, worst_render = 0.0;
+    int per_face[6] = {};
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 v = to_float(dvec3(u(rng), u(rng), u(rng)) * std::exp2(e(rng)));
+        const vec3 got = rk_sh_cube_face_uv(v);
+        const glm::dvec3 want = gl_cube_face_uv(dvec3(v));
+        ASSERT_EQ(double(got.z), want.z) << v.x << " " << v.y << " " << v.z;
+        worst_table = std::max({worst_table, std::abs(got.x - want.x), std::abs(got.y - want.y)});
+        const int face = int(got.z);
+        ++per_face[face];
+        const glm::dvec4 c = proj * glm::lookAt(dvec3(0.0), axes[face], ups[face]) * glm::dvec4(dvec3(v) / std::exp2(std::floor(std::log2(glm::length(dvec3(v))))), 1.0);
+        worst_render = std::max({worst_render, std::abs(0.5 * c.x / c.w + 0.5 - got.x), std::abs(0.5 * c.y / c.w + 0.5 - got.y)});
+    }
+    for (int c : per_face) EXPECT_GT(c, 30000);
+    std::printf("rk_sh_cube_face_uv: %.3g against the GL table, %.3g against the faces' projections\n", worst_table, worst_render);
+    EXPECT_LE(worst_table, 4.5e-8);
+    EXPECT_LE(worst_render, 2e-7);
+    // Texel centres of every face come back to their texel.
+    for (int face = 0; face < 6; ++face)
+        for (int j = 0; j < 16; ++j)
+            for (int i = 0; i < 16; ++i) {
+                const dvec3 right = glm::cross(axes[face], ups[face]), up = glm::cross(right, axes[face]);
+                const double sc = (i + 0.5) / 8.0 - 1.0, tc = (j + 0.5) / 8.0 - 1.0;
+                const vec3 got = rk_sh_cube_face_uv(vec3(axes[face] + sc * right + tc * up));
+                ASSERT_EQ(int(got.z), face);
+                ASSERT_EQ(int(std::floor(got.x * 16.0f)), i) << face;
+                ASSERT_EQ(int(std::floor(got.y * 16.0f)), j) << face;
+            }
+    // Ties and degenerate input.
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(1.0f, 1.0f, 1.0f)).z, 0.0f) << "x before y before z";
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(0.0f, -1.0f, 1.0f)).z, 3.0f);
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(-0.0f, 0.0f, 0.0f)), vec3(0.5f, 0.5f, 0.0f));
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(-1e-40f, 0.0f, 0.0f)), vec3(0.5f, 0.5f, 0.0f)) << "all-denormal counts as zero";
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(nan, -2.0f, 1.0f)), vec3(0.5f, 0.25f, 3.0f)) << "NaN counts as 0";
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(0.0f, 0.0f, -inf)), vec3(0.5f, 0.5f, 5.0f));
+    EXPECT_EQ(rk_sh_cube_face_uv(vec3(3.4028235e38f, -3.4028235e38f, 1.0f)).z, 0.0f);
+}
+
+/// The largest singular value of the unit direction's derivative with respect to (a, b), by
+/// central differences in float64: the angle one unit of (a, b) spans along its longer axis.
+template <class F>
+double angular_scale(F&& dir, double a, double b)
+{
+    const double h = 1e-6;
+    const dvec3 da = (glm::normalize(dir(a + h, b)) - glm::normalize(dir(a - h, b))) / (2.0 * h);
+    const dvec3 db = (glm::normalize(dir(a, b + h)) - glm::normalize(dir(a, b - h))) / (2.0 * h);
+    const double p = glm::dot(da, da), q = glm::dot(da, db), r = glm::dot(db, db);
+    return std::sqrt(0.5 * (p + r) + std::sqrt(0.25 * (p - r) * (p - r) + q * q));
+}
+
+TEST(Shadow, CubeRefDistanceAndTexelWidthAgainstFloat64)
+{
+    std::mt19937 rng(8u);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), ul(0.0, 1.0);
+    double worst_ref = 0.0, worst_tw = 0.0, worst_jac = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+        const float n = float(0.01 + ul(rng)), f = n + float(0.001 + 100.0 * ul(rng));
+        const vec3 v = to_float(glm::normalize(dvec3(u(rng), u(rng), u(rng))) * (2.0 * f * ul(rng)));
+        const dvec3 vd(v);
+        const double len = glm::length(vd), want = (len - n) / (double(f) - n);
+        const double err = std::abs(double(rk_sh_cube_ref_distance(v, n, f)) - want);
+        worst_ref = std::max(worst_ref, (err - 2.3 * ulp_at(len) / (double(f) - n)) / ulp_at(want));
+        const float size = float(1 + int(ul(rng) * 4096.0));
+        const double z = std::max({std::abs(vd.x), std::abs(vd.y), std::abs(vd.z)});
+        const float tw = rk_sh_cube_texel_world(v, size);
+        worst_tw = std::max(worst_tw, std::abs(double(tw) - 2.0 * z / size) / ulp_at(2.0 * z / size));
+        // The texel's width across the ray from the face's geometry: |v| times the angle one texel
+        // (1 / size of s or t) spans along its longer axis.
+        if (len > 1e-3) {
+            const glm::dvec3 ft = gl_cube_face_uv(vd);
+            const int face = int(ft.z);
+            const dvec3 axes[6] = {dvec3(1, 0, 0), dvec3(-1, 0, 0), dvec3(0, 1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1)};
+            const dvec3 scs[6] = {dvec3(0, 0, -1), dvec3(0, 0, 1), dvec3(1, 0, 0), dvec3(1, 0, 0), dvec3(1, 0, 0), dvec3(-1, 0, 0)};
+            const dvec3 tcs[6] = {dvec3(0, -1, 0), dvec3(0, -1, 0), dvec3(0, 0, 1), dvec3(0, 0, -1), dvec3(0, -1, 0), dvec3(0, -1, 0)};
+            auto dir = [&](double s, double t) { return axes[face] + (2.0 * s - 1.0) * scs[face] + (2.0 * t - 1.0) * tcs[face]; };
+            const double geom = len * angular_scale(dir, ft.x, ft.y) / size;
+            worst_jac = std::max(worst_jac, std::abs(double(tw) / geom - 1.0));
+        }
+    }
+    std::printf("rk_sh_cube_ref_distance: %.2f ulp beyond 2.3 ulp of |v| / (f - n); rk_sh_cube_texel_world %.2f ulp of 2 z / N, "
+                "%.2g relative to the face geometry's texel width\n",
+                worst_ref, worst_tw, worst_jac);
+    EXPECT_LE(worst_ref, 1.9);
+    EXPECT_LE(worst_tw, 0.5);
+    EXPECT_LE(worst_jac, 1e-6);
+    // The two ends of the face: 2 d / N at the centre, 2 d / (sqrt(3) N) at a corner.
+    EXPECT_FLOAT_EQ(rk_sh_cube_texel_world(vec3(0.0f, 0.0f, -3.0f), 512.0f), 6.0f / 512.0f);
+    EXPECT_NEAR(rk_sh_cube_texel_world(vec3(1.0f, 1.0f, 1.0f), 1.0f), 2.0 * glm::length(dvec3(1.0)) / std::sqrt(3.0), 1e-6);
+    // Ends of the distance compare and degenerate ranges.
+    EXPECT_EQ(rk_sh_cube_ref_distance(vec3(0.0f, 0.0f, 2.0f), 2.0f, 10.0f), 0.0f);
+    EXPECT_EQ(rk_sh_cube_ref_distance(vec3(6.0f, 0.0f, -8.0f), 2.0f, 10.0f), 1.0f);
+    EXPECT_EQ(rk_sh_cube_ref_distance(vec3(0.0f), 0.0f, 10.0f), 0.0f);
+    EXPECT_EQ(rk_sh_cube_ref_distance(vec3(1.0f, 0.0f, 0.0f), 5.0f, 5.0f), -1e6f) << "n >= f: finite";
+    EXPECT_TRUE(std::isfinite(rk_sh_cube_texel_world(vec3(3.4028235e38f), 0.0f)));
+    EXPECT_EQ(rk_sh_cube_texel_world(vec3(std::numeric_limits<float>::quiet_NaN()), 512.0f), 0.0f);
+}
+
+TEST(Shadow, DualParaboloidLookupAndTexelWidthAgainstFloat64)
+{
+    std::mt19937 rng(9u);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), e(-30.0, 30.0), ul(0.0, 1.0);
+    double worst_uv = 0.0, worst_depth = 0.0, worst_tw = 0.0, worst_geom = 0.0;
+    const float n = 0.05f, f = 40.0f;
+    for (int i = 0; i < 200000; ++i) {
+        const vec3 v = to_float(dvec3(u(rng), u(rng), u(rng)) * (i % 2 ? 40.0 * ul(rng) : std::exp2(e(rng))));
+        const float g = float(0.5 + 0.5 * ul(rng)), half = float(1 + int(ul(rng) * 4096.0));
+        const dvec3 vd(v);
+        const double len = glm::length(vd);
+        if (len < 1e-30) continue;
+        const double hemi = v.z > -1.17549435e-38f ? 1.0 : -1.0;
+        const dvec3 d = vd / len;
+        const double s = d.x / (1.0 + hemi * d.z), t = d.y / (1.0 + hemi * d.z);
+        const double uu = 0.5 * (0.5 + 0.5 * g * s) + (hemi > 0.0 ? 0.0 : 0.5), vv = 0.5 + 0.5 * g * t;
+        const vec3 got = rk_sh_dp_lookup(v, n, f, g);
+        worst_uv = std::max({worst_uv, std::abs(got.x - uu), std::abs(got.y - vv)});
+        const double depth = (len - n) / (double(f) - n);
+        if (depth < 1e6)  // rk_paraboloid_depth_encode clamps there
+            worst_depth = std::max(worst_depth, (std::abs(got.z - depth) - 2.3 * ulp_at(len) / (double(f) - n)) / ulp_at(depth));
+        const double tw = len * 4.0 / ((1.0 + s * s + t * t) * g * half);
+        const float tw_got = rk_sh_dp_texel_world(v, half, g);
+        worst_tw = std::max(worst_tw, std::abs(double(tw_got) - tw) / ulp_at(tw));
+        // The texel's width from the atlas's geometry: one texel is 1 / half of the half's uv; the
+        // map is conformal, so the angle is the same along both axes.
+        auto dir = [&](double a, double b) {
+            const double ss = (2.0 * a - 1.0) / g, tt = (2.0 * b - 1.0) / g, r2 = ss * ss + tt * tt;
+            return dvec3(2.0 * ss, 2.0 * tt, hemi * (1.0 - r2)) / (1.0 + r2);
+        };
+        const double geom = len * angular_scale(dir, 0.5 + 0.5 * g * s, 0.5 + 0.5 * g * t) / half;
+        worst_geom = std::max(worst_geom, std::abs(double(tw_got) / geom - 1.0));
+    }
+    std::printf("rk_sh_dp_lookup: uv %.3g, depth %.2f ulp beyond 2.3 ulp of |v| / (f - n); rk_sh_dp_texel_world %.2f ulp, %.2g relative "
+                "to the atlas geometry's texel width\n",
+                worst_uv, worst_depth, worst_tw, worst_geom);
+    EXPECT_LE(worst_uv, 1.2e-7);
+    EXPECT_LE(worst_depth, 1.9);
+    EXPECT_LE(worst_tw, 7.4);
+    EXPECT_LE(worst_geom, 1e-6);
+    // Texel centres of the atlas, disks and guard band: the lookup of the direction stored there
+    // (rk_dual_paraboloid_dir) lands in that texel, or, past the rim, in the other half at the same
+    // direction (the guard band holds the continuation).
+    const int hs = 64;
+    const float g = rk_dual_paraboloid_guard_scale(float(hs), 0.5f);
+    int inside = 0, continued = 0;
+    for (int j = 0; j < hs; ++j)
+        for (int i = 0; i < 2 * hs; ++i) {
+            const vec2 uv((float(i) + 0.5f) / float(2 * hs), (float(j) + 0.5f) / float(hs));
+            const vec3 dir = rk_dual_paraboloid_dir(uv, g);
+            const vec3 l = rk_sh_dp_lookup(dir * 7.0f, n, f, g);
+            ASSERT_NEAR(l.z, (7.0 - n) / (double(f) - n), 1e-6);
+            if (int(std::floor(l.x * float(2 * hs))) == i && int(std::floor(l.y * float(hs))) == j) {
+                ++inside;
+            } else {
+                ASSERT_NE(i < hs, l.x < 0.5f) << "past the rim: the other half";
+                ASSERT_LE(glm::length(dvec3(rk_dual_paraboloid_dir(vec2(l.x, l.y), g)) - dvec3(dir)), 1e-6);
+                ++continued;
+            }
+        }
+    EXPECT_GT(inside, int(0.75 * 2 * hs * hs));
+    EXPECT_GT(continued, 0);
+    // Degenerate input.
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const vec3 zero = rk_sh_dp_lookup(vec3(0.0f), n, f, g);
+    EXPECT_EQ(zero.x, 0.25f);
+    EXPECT_EQ(zero.y, 0.5f);
+    EXPECT_LT(zero.z, 0.0f) << "the light's own position is lit";
+    EXPECT_EQ(rk_sh_dp_texel_world(vec3(0.0f), 512.0f, g), 0.0f);
+    for (const vec3& v : {vec3(nan), vec3(inf, -inf, nan), vec3(3.4028235e38f), vec3(1e-40f, -1e-40f, -1e-45f)}) {
+        EXPECT_TRUE(rktest::adv::finite(rk_sh_dp_lookup(v, nan, inf, nan))) << v.x;
+        EXPECT_TRUE(rktest::adv::finite(rk_sh_dp_lookup(v, f, n, 2.0f))) << v.x;
+        EXPECT_TRUE(std::isfinite(rk_sh_dp_texel_world(v, nan, inf))) << v.x;
+    }
+    // The pole (largest texel) and the rim (half of it).
+    EXPECT_NEAR(rk_sh_dp_texel_world(vec3(0.0f, 0.0f, -2.0f), 256.0f, 1.0f), 2.0 * 4.0 / 256.0, 1e-7);
+    EXPECT_NEAR(rk_sh_dp_texel_world(vec3(2.0f, 0.0f, 0.0f), 256.0f, 1.0f), 2.0 * 2.0 / 256.0, 1e-7);
 }
 
 TEST(Shadow, AdversarialInputsStayFinite)
@@ -307,6 +587,38 @@ TEST(Shadow, AdversarialInputsStayFinite)
         const float dr = G.f(any), db = G.f(any), wl = G.f(any);
         const float w = rk_sh_pcss_penumbra(dr, db, wl);
         CHECK(std::isfinite(w) && w >= 0.0f, S(w));
+    });
+    // The omnidirectional functions take any float, NaN and infinities included.
+    const Floats all = Floats::all();
+    const Vecs allv = Vecs::all();
+    ADV("rk_sh_finite / rk_sh_omni_distance / rk_sh_omni_toward_light", {
+        const float x = G.f(all);
+        const float fx = rk_sh_finite(x);
+        CHECK(std::isfinite(fx) && (!std::isfinite(x) || fx == x), S(fx));
+        const vec3 v = G.v3(allv);
+        const float d = rk_sh_omni_distance(v);
+        CHECK(std::isfinite(d) && d >= 0.0f && d <= 1e18f, S(d));
+        const vec3 t = rk_sh_omni_toward_light(v, G.f(all));
+        CHECK(finite(t), S(t));
+    });
+    ADV("rk_sh_cube_face_uv / rk_sh_cube_ref_depth / rk_sh_cube_ref_distance / rk_sh_cube_texel_world", {
+        const vec3 v = G.v3(allv);
+        const vec3 fu = rk_sh_cube_face_uv(v);
+        CHECK(fu.x >= 0.0f && fu.x <= 1.0f && fu.y >= 0.0f && fu.y <= 1.0f && (fu.z == 0.0f || fu.z == 1.0f || fu.z == 2.0f ||
+              fu.z == 3.0f || fu.z == 4.0f || fu.z == 5.0f), S(fu));
+        const float n = G.f(all), f = G.f(all);
+        const float rd = rk_sh_cube_ref_depth(v, n, f), rl = rk_sh_cube_ref_distance(v, n, f);
+        CHECK(std::isfinite(rd) && std::isfinite(rl), S(rd) + " " + S(rl));
+        const float tw = rk_sh_cube_texel_world(v, G.f(all));
+        CHECK(std::isfinite(tw) && tw >= 0.0f, S(tw));
+    });
+    ADV("rk_sh_dp_lookup / rk_sh_dp_texel_world", {
+        const vec3 v = G.v3(allv);
+        const float n = G.f(all), f = G.f(all), g = G.f(all);
+        const vec3 l = rk_sh_dp_lookup(v, n, f, g);
+        CHECK(finite(l) && l.x >= 0.0f && l.x <= 1.0f && l.y >= 0.0f && l.y <= 1.0f, S(l));
+        const float tw = rk_sh_dp_texel_world(v, G.f(all), g);
+        CHECK(std::isfinite(tw) && tw >= 0.0f, S(tw));
     });
     ADV("rk_sh_vogel_disk / rk_sh_rotation / rk_sh_cascade_*", {
         const uint32_t n = G.u(0u, 4096u), i = G.u(0u, 4096u);

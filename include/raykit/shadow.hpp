@@ -2,7 +2,9 @@
 // mapping (Fahlén, "Illumination for Real-Time Rendering of Large Architectural Environments",
 // ch. 5): the shadow matrix (Eq. 5.1) for OpenGL's and Vulkan's depth ranges, cascade split
 // distances, an orthographic light fit per cascade whose texel grid stays fixed in world space while
-// the camera moves (no shimmering edges), and deterministic PCF sample patterns.
+// the camera moves (no shimmering edges), and deterministic PCF sample patterns. Point lights' cube
+// and dual-paraboloid maps are read through shadow.glsl's omnidirectional section (which includes
+// paraboloid.glsl, so this header brings in raykit/paraboloid.hpp).
 //
 // Every rk_* function below is compiled from the very same text the GPU runs (docs/dialect.md);
 // tests/gpu/parity_shadow.cpp checks that both builds agree on a real driver.
@@ -17,6 +19,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raykit/common.hpp"
+#include "raykit/paraboloid.hpp"  // shadow.glsl reads dual-paraboloid atlases through paraboloid.glsl
 
 namespace raykit {
 #include "raykit/shadow.glsl"

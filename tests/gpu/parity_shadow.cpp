@@ -1,5 +1,6 @@
 // GPU parity for shaders/raykit/shadow.glsl (see parity.hpp): projection into the map, biases, the
-// sample patterns, the penumbra width and cascade selection, on the driver against the C++ build.
+// sample patterns, the penumbra width and cascade selection, and the omnidirectional lights' cube
+// and dual-paraboloid lookups and texel widths, on the driver against the C++ build.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -15,6 +16,8 @@ namespace {
 
 parity::Domain coord() { return {-10.0f, 10.0f, false, {0.0f, 1.0f, -1.0f}}; }
 parity::Domain dist() { return {0.0f, 120.0f, false, {0.0f, 10.0f, 30.0f, 60.0f, 120.0f}}; }
+parity::Domain texels() { return {1.0f, 4096.0f, true, {256.0f, 1024.0f, 1.0f}}; }
+parity::Domain guard() { return {0.5f, 1.0f, false, {1.0f, 0.99609375f, 0.96875f, 0.0f}}; }
 
 }  // namespace
 
@@ -44,6 +47,31 @@ TEST(GpuParity, Shadow)
                   o[0] = rk_sh_pcss_penumbra(a[0], a[1], a[2]);),
         RK_PARITY("rk_sh_cube_ref_depth", S, (coord(), coord(), coord()), 1,
                   o[0] = rk_sh_cube_ref_depth(vec3(clamp(a[0], -10.0f, 10.0f), clamp(a[1], -10.0f, 10.0f), clamp(a[2], -10.0f, 10.0f)), 0.05f, 80.0f);),
+        // The omnidirectional functions take raw inputs: the harness's adversarial values (±0,
+        // denormals, 1e20, 1e30, ±FLT_MAX) reach every component of v and every parameter.
+        RK_PARITY("rk_sh_finite / rk_sh_omni_distance", S, (coord(), coord(), coord()), 4,
+                  o[0] = rk_sh_finite(a[0]);
+                  o[1] = rk_sh_omni_distance(vec3(a[0], a[1], a[2]));
+                  vec3 w = rk_sh_finite3(vec3(a[2], a[1], a[0]));
+                  o[2] = w.x; o[3] = w.z;),
+        RK_PARITY("rk_sh_omni_toward_light", S, (coord(), coord(), coord(), dom::range(0.0f, 20.0f)), 3,
+                  vec3 r = rk_sh_omni_toward_light(vec3(a[0], a[1], a[2]), a[3]);
+                  o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+        RK_PARITY("rk_sh_cube_face_uv", S, (coord(), coord(), coord()), 3,
+                  vec3 r = rk_sh_cube_face_uv(vec3(a[0], a[1], a[2]));
+                  o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+        RK_PARITY("rk_sh_cube_ref_depth (raw)", S, (coord(), coord(), coord(), dist(), dist()), 1,
+                  o[0] = rk_sh_cube_ref_depth(vec3(a[0], a[1], a[2]), a[3], a[4]);),
+        RK_PARITY("rk_sh_cube_ref_distance", S, (coord(), coord(), coord(), dist(), dist()), 2,
+                  o[0] = rk_sh_cube_ref_distance(vec3(a[0], a[1], a[2]), min(a[3], a[4]), max(a[3], a[4]) + 1.0f);
+                  o[1] = rk_sh_cube_ref_distance(vec3(a[0], a[1], a[2]), 0.05f, 80.0f);),
+        RK_PARITY("rk_sh_cube_texel_world", S, (coord(), coord(), coord(), texels()), 1,
+                  o[0] = rk_sh_cube_texel_world(vec3(a[0], a[1], a[2]), a[3]);),
+        RK_PARITY("rk_sh_dp_lookup", S, (coord(), coord(), coord(), guard()), 3,
+                  vec3 r = rk_sh_dp_lookup(vec3(a[0], a[1], a[2]), 0.05f, 80.0f, a[3]);
+                  o[0] = r.x; o[1] = r.y; o[2] = r.z;),
+        RK_PARITY("rk_sh_dp_texel_world", S, (coord(), coord(), coord(), texels(), guard()), 1,
+                  o[0] = rk_sh_dp_texel_world(vec3(a[0], a[1], a[2]), a[3], a[4]);),
         RK_PARITY("rk_sh_cascade_index / rk_sh_cascade_blend", S, (dist(), dom::unit()), 2,
                   o[0] = float(rk_sh_cascade_index(a[0], vec4(10.0f, 30.0f, 60.0f, 120.0f)));
                   o[1] = rk_sh_cascade_blend(a[0], 30.0f, 8.0f * a[1]);),
