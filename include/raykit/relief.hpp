@@ -65,9 +65,9 @@ namespace detail {
 /// Texel coordinate of uv along one axis for bilinear filtering: (floor index, fraction), wrapped
 /// into [0, size) for REPEAT, clamped to [-1, size] for CLAMP_TO_EDGE (ReliefMapCpu::at clamps the
 /// index again). Non-finite uv reads as 0.
-inline void relief_axis(float uv, int size, bool wrap, int& i0, double& a)
+inline void relief_axis(double uv, int size, bool wrap, int& i0, double& a)
 {
-    double f = static_cast<double>(uv) * size - 0.5;
+    double f = uv * size - 0.5;
     if (!std::isfinite(f)) f = 0.0;
     if (wrap) {
         f = std::fmod(f, static_cast<double>(size));
@@ -89,8 +89,8 @@ inline vec2 rk_relief_read(const ReliefMapCpu& m, vec2 uv)
     if (!m.valid()) return vec2(0.0f);
     int x0 = 0, y0 = 0;
     double ax = 0.0, ay = 0.0;
-    detail::relief_axis(uv.x, m.width, m.wrap, x0, ax);
-    detail::relief_axis(uv.y, m.height, m.wrap, y0, ay);
+    detail::relief_axis(static_cast<double>(uv.x), m.width, m.wrap, x0, ax);
+    detail::relief_axis(static_cast<double>(uv.y), m.height, m.wrap, y0, ay);
     const vec2 a = m.at(x0, y0), b = m.at(x0 + 1, y0), c = m.at(x0, y0 + 1), d = m.at(x0 + 1, y0 + 1);
     const float fx = static_cast<float>(ax), fy = static_cast<float>(ay);
     const vec2 top = a * (1.0f - fx) + b * fx, bottom = c * (1.0f - fx) + d * fx;
@@ -391,22 +391,10 @@ namespace detail {
 /// rounding), for the builders.
 inline double relief_depth_d(const ReliefMapCpu& m, double u, double v)
 {
-    auto axis = [&](double c, int size, int& i0, double& a) {
-        double f = c * size - 0.5;
-        if (m.wrap) {
-            f = std::fmod(f, static_cast<double>(size));
-            if (f < 0.0) f += size;
-        } else {
-            f = std::min(std::max(f, -1.0), static_cast<double>(size));
-        }
-        const double fl = std::floor(f);
-        i0 = static_cast<int>(fl);
-        a = f - fl;
-    };
     int x0 = 0, y0 = 0;
     double ax = 0.0, ay = 0.0;
-    axis(u, m.width, x0, ax);
-    axis(v, m.height, y0, ay);
+    relief_axis(u, m.width, m.wrap, x0, ax);
+    relief_axis(v, m.height, m.wrap, y0, ay);
     const double top = m.depth(x0, y0) * (1.0 - ax) + static_cast<double>(m.depth(x0 + 1, y0)) * ax;
     const double bottom = m.depth(x0, y0 + 1) * (1.0 - ax) + static_cast<double>(m.depth(x0 + 1, y0 + 1)) * ax;
     return top * (1.0 - ay) + bottom * ay;
