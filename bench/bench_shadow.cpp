@@ -141,7 +141,8 @@ struct Lookup {
 /// The lookups of every scored point for a filter reaching `kernel` texels from the centre: a
 /// slope-scaled bias that covers the kernel (0.5 texel of depth, plus 1 + kernel texels per unit
 /// slope, at most 10 + kernel: a tilted receiver's own depth changes by that much under the taps),
-/// and the rotation of the point's pixel.
+/// and a per-point rotation (rk_sh_rotation of the point's index laid out 160 wide, standing in for
+/// its pixel).
 std::vector<Lookup> lookups(double kernel)
 {
     const World& W = world();
@@ -218,7 +219,7 @@ const SuiteRegistrar registrar(
      "facing the sun, with a slope-scaled bias that covers the filter's kernel (1 + kernel texels of depth per unit "
      "slope: without it a wide kernel shadows a tilted receiver with itself) and a per-pixel rotation.\n"
      "- **max / mean abs err**: |lit fraction - exact visible fraction of the sun's disk| (0.05 rad, 256 "
-     "stratified rays per point cast against the analytic scene in double), over 10^4 camera points of a "
+     "stratified rays per point cast against the analytic scene in double), over about 9,400 camera points of a "
      "ground with spheres, a floating plate and a thin wall. **worst at**: the exact visibility there. Most "
      "points are fully lit or fully shadowed, where every filter is exact, so the maxima sit at a few penumbra "
      "points and the means are small; the plot shows the mean.\n"

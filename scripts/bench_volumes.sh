@@ -18,10 +18,9 @@ REPS="${BENCH_VOLUMES_REPS:-7}"
 DOC="${BENCH_VOLUMES_DOC:-docs/benchmarks_volumes.md}"
 cmake --build "$BUILD" --target effects -j"$(nproc)"
 TMP="$(mktemp)"
-trap 'rm -f "$TMP"' EXIT
+trap 'rm -f "$TMP" "$TMP.log"' EXIT
 "$BUILD/samples/effects" --bench --reps "$REPS" --size "$SIZE" --bench-out "$TMP" > "$TMP.log"
 RENDERER="$(grep -m1 '^\*\*Renderer' "$TMP.log" || true)"
-rm -f "$TMP.log"
 {
   echo "# Volumes: billboards, slices and raytraced soft particles"
   echo

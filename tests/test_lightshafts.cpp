@@ -252,6 +252,11 @@ TEST(LightShafts, AccumulationMatchesItsDefinitionAndBadInputStaysFinite)
             EXPECT_TRUE(std::isfinite(r.x) && std::isfinite(r2.x)) << p << " " << n;
             EXPECT_GE(r.x, 0.0f);
         }
+    // An overflowing sum with a zero exposure: held finite, not Inf * 0.
+    for (float ex : {0.0f, 1.0f, 3.4028235e38f}) {
+        const vec3 big = rk_ls_accumulate(m, uv, luv, 64u, 0.9f, 3.4028235e38f, 1.0f, ex);
+        EXPECT_TRUE(std::isfinite(big.x) && big.x >= 0.0f) << ex;
+    }
     EXPECT_EQ(rk_ls_disk(vec2(0.5f), vec2(0.5f), 0.2f, 1.5f), 1.0f);
     EXPECT_EQ(rk_ls_disk(vec2(0.9f, 0.5f), vec2(0.5f), 0.2f, 1.0f), 0.0f);
     const vec2 far = rk_ls_light_uv(vec4(1e30f, -1e30f, 0.0f, 1e-30f));

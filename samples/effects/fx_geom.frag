@@ -2,7 +2,8 @@
 // raykit sample effects — fx_geom.frag: albedo (alpha: the sun's self-shadowing visibility) and
 // view-space normal. Relief materials (relief.glsl) displace the surface in the pixel shader: cone
 // stepping (rk_relief_cone) on a conservative cone map, the normal from the depth map around the
-// hit, self-shadowing towards the sun (rk_relief_shadow).
+// hit, self-shadowing towards the sun (rk_relief_shadow). SSAO gets the geometric normal: the
+// depth buffer holds the flat surface, and a bumped normal would lean its hemisphere into it.
 #extension GL_GOOGLE_include_directive : require
 #include "fx_common.glsl"
 #include "raykit/relief.glsl"
@@ -14,7 +15,8 @@ layout(location = 1) in vec3 v_albedo;
 layout(location = 2) in vec3 v_world;
 layout(location = 3) flat in int v_material;
 layout(location = 0) out vec4 o_albedo;
-layout(location = 1) out vec4 o_normal;
+layout(location = 1) out vec4 o_normal;      // the shading normal (relief-mapped)
+layout(location = 2) out vec4 o_geo_normal;  // the geometric normal, for SSAO (it matches the depth)
 
 float fx_hash(vec2 c) { return fract(sin(dot(c, vec2(12.9898, 78.233))) * 43758.5453); }
 
@@ -56,4 +58,5 @@ void main()
     }
     o_albedo = vec4(albedo, sun_vis);
     o_normal = vec4(mat3(u_view) * n, 0.0);
+    o_geo_normal = vec4(mat3(u_view) * normalize(v_normal), 0.0);
 }

@@ -5,7 +5,7 @@
 #include "fx_common.glsl"
 #include "raykit/ssao.glsl"
 layout(binding = 0) uniform sampler2D u_depth;   // NEAREST
-layout(binding = 1) uniform sampler2D u_normal;  // view-space normal
+layout(binding = 1) uniform sampler2D u_normal;  // view-space geometric normal
 layout(binding = 2) uniform sampler2D u_ao_in;   // blur input
 layout(std140, binding = 1) uniform FxKernel { vec4 u_kernel[RK_AO_MAX_SAMPLES]; vec4 u_noise[16]; };
 layout(location = 0) out vec4 o_ao;

@@ -252,6 +252,7 @@ public:
         depth_ = texture2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
         albedo_ = texture2d(GL_RGBA8, w, h, GL_NEAREST);
         normal_ = texture2d(GL_RGBA16F, w, h, GL_NEAREST);
+        geo_normal_ = texture2d(GL_RGBA16F, w, h, GL_NEAREST);
         ao_raw_ = texture2d(GL_R16F, w, h, GL_NEAREST);
         ao_tmp_ = texture2d(GL_R16F, w, h, GL_NEAREST);
         ao_ = texture2d(GL_R16F, w, h, GL_NEAREST);
@@ -260,7 +261,7 @@ public:
         hdr_ = texture2d(GL_RGBA16F, w, h, GL_NEAREST);
         ldr8_ = texture2d(GL_RGBA8, w, h, GL_NEAREST);
         out_ = texture2d(GL_RGBA8, w, h, GL_NEAREST);
-        gfbo_ = framebuffer({albedo_, normal_}, depth_);
+        gfbo_ = framebuffer({albedo_, normal_, geo_normal_}, depth_);
         ao_raw_fbo_ = framebuffer({ao_raw_}, 0);
         ao_tmp_fbo_ = framebuffer({ao_tmp_}, 0);
         ao_fbo_ = framebuffer({ao_}, 0);
@@ -292,8 +293,8 @@ public:
         glDeleteBuffers(4, bufs);
         GLuint vaos[2] = {vao_, empty_};
         glDeleteVertexArrays(2, vaos);
-        GLuint texs[14] = {smoke_, depth_, albedo_, normal_, ao_raw_, ao_tmp_, ao_, occ_tex_, shafts_tex_, hdr_, ldr8_, out_, bricks_, paving_};
-        glDeleteTextures(14, texs);
+        GLuint texs[15] = {smoke_, depth_, albedo_, normal_, geo_normal_, ao_raw_, ao_tmp_, ao_, occ_tex_, shafts_tex_, hdr_, ldr8_, out_, bricks_, paving_};
+        glDeleteTextures(15, texs);
         GLuint fbos[9] = {gfbo_, ao_raw_fbo_, ao_tmp_fbo_, ao_fbo_, occ_fbo_, shafts_fbo_, hdr_fbo_, ldr8_fbo_, out_fbo_};
         glDeleteFramebuffers(9, fbos);
     }
@@ -338,6 +339,7 @@ public:
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(gfbo_, GL_COLOR, 0, zero);
         glClearNamedFramebufferfv(gfbo_, GL_COLOR, 1, zero);
+        glClearNamedFramebufferfv(gfbo_, GL_COLOR, 2, zero);
         glClearDepth(0.0);
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
@@ -354,7 +356,7 @@ public:
         glDisable(GL_CULL_FACE);
         glBindVertexArray(empty_);
         glBindTextureUnit(0, depth_);
-        glBindTextureUnit(1, normal_);
+        glBindTextureUnit(1, geo_normal_);
         if (s.ssao) {
             glBindFramebuffer(GL_FRAMEBUFFER, ao_raw_fbo_);
             glUseProgram(ssao_[0]);
@@ -479,7 +481,7 @@ private:
     std::map<PuffStyle, GLuint> puff_progs_;
     GLuint vbo_ = 0, vao_ = 0, empty_ = 0, smoke_ = 0, bricks_ = 0, paving_ = 0, ubo_ = 0, kernel_ubo_ = 0, puffs_ = 0;
     GLsizei count_ = 0;
-    GLuint depth_ = 0, albedo_ = 0, normal_ = 0, ao_raw_ = 0, ao_tmp_ = 0, ao_ = 0, occ_tex_ = 0, shafts_tex_ = 0, hdr_ = 0, ldr8_ = 0,
+    GLuint depth_ = 0, albedo_ = 0, normal_ = 0, geo_normal_ = 0, ao_raw_ = 0, ao_tmp_ = 0, ao_ = 0, occ_tex_ = 0, shafts_tex_ = 0, hdr_ = 0, ldr8_ = 0,
            out_ = 0;
     GLuint gfbo_ = 0, ao_raw_fbo_ = 0, ao_tmp_fbo_ = 0, ao_fbo_ = 0, occ_fbo_ = 0, shafts_fbo_ = 0, hdr_fbo_ = 0, ldr8_fbo_ = 0, out_fbo_ = 0;
     FrameUbo frame_{};
@@ -682,12 +684,12 @@ int run(const Options& opt)
     }
     write("effects_volumes.png", r.finish(day.exposure, false));
 
-    // SSAO: the AO buffer of the day view (floor far from anything reads 0; contact under the
-    // crates and along the wall's foot reads more).
+    // SSAO: the AO buffer of the day view (open floor reads 0; contact under the crates and along
+    // the wall's foot reads more).
     const std::vector<float> ao = r.read_r(r.ao_texture());
     double ao_mean = 0.0;
-    if (!finite_mean(ao, 1, ao_mean) || ao_mean <= 0.0 || ao_mean > 0.3) {
-        std::fprintf(stderr, "FAIL ssao: mean AO %.4f outside (0, 0.3]\n", ao_mean);
+    if (!finite_mean(ao, 1, ao_mean) || ao_mean <= 0.0 || ao_mean > 0.02) {
+        std::fprintf(stderr, "FAIL ssao: mean AO %.4f outside (0, 0.02] (mostly open floor and wall)\n", ao_mean);
         ++failures;
     }
     write("effects_ssao.png", r.finish(day.exposure, true));

@@ -117,10 +117,12 @@ RK_INLINE vec3 rk_ls_accumulate(RK_LS_MAP occ, vec2 uv, vec2 light_uv, uint n, f
         if (i >= nn) break;
         coord = vec2(coord.x - delta.x, coord.y - delta.y);
         vec3 s = rk_ls_read(occ, coord);
-        sum += s * (fall * w);
+        sum += clamp(s, vec3(0.0f), vec3(RK_FLT_MAX)) * (fall * w);
         fall *= dec;
     }
-    return clamp(sum * ex, vec3(0.0f), vec3(RK_FLT_MAX));
+    // An overflowing sum is held at RK_FLT_MAX first (Inf times a zero exposure would be NaN).
+    vec3 held = clamp(sum, vec3(0.0f), vec3(RK_FLT_MAX));
+    return clamp(held * ex, vec3(0.0f), vec3(RK_FLT_MAX));
 }
 
 RK_CONFIGURED_END

@@ -57,6 +57,9 @@ RK_INLINE vec2 rk_ao_project(vec3 p, vec4 proj)
     return vec2(0.5f + 0.5f * x, 0.5f + 0.5f * y);
 }
 
+/// rk_ao_clamp3_: internal. Componentwise clamp to [-RK_FLT_MAX, RK_FLT_MAX].
+RK_INLINE vec3 rk_ao_clamp3_(vec3 v) { return clamp(v, vec3(-RK_FLT_MAX), vec3(RK_FLT_MAX)); }
+
 /// rk_ao_inside: whether uv lies in the texture ([0, 1]², NaN excluded).
 RK_INLINE bool rk_ao_inside(vec2 uv) { return uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f; }
 
@@ -103,31 +106,31 @@ RK_INLINE float rk_ao_sphere_count(RK_AO_MAP depth, vec3 p, float radius, vec3 k
 RK_INLINE float rk_ao_sphere_occlusion(float count) { return rk_saturate(2.0f * count - 1.0f); }
 
 /// rk_ao_hemisphere: normal-oriented SSAO: n kernel points in the unit hemisphere around +z
-/// (ao_kernel_hemisphere), turned into the frame of the unit view-space normal nrm and rotated
-/// about it by the unit 2-D vector `rot` (ao_rotation_noise, per pixel), placed at
-/// p + radius · frame · kernel[i]; a point behind the depth buffer by more than the bias occludes,
-/// weighted by the range check smoothstep(0, 1, radius / |p.z - surface z|) (a surface far in front
-/// of the point, e.g. a foreground object over a background, counts little). The bias is `bias`
-/// (view units) plus the footprint term: the depth buffer holds each texel's centre, so a sample
-/// compared with it is off by the receiving plane's depth change over half a texel, which grows
-/// without bound at grazing angles (inv_size = (1 / width, 1 / height) of the depth buffer): with it
-/// a flat surface gives exactly 0 at any distance and angle. Returns the occluded fraction in
-/// [0, 1] (ambient light factor = 1 - it). Cost: n (projection + read + rebuild) + a frame (1
-/// rsqrt, 1 cross, 1 div).
+/// (ao_kernel_hemisphere), turned into the frame of the unit view-space normal nrm (the geometric
+/// normal of what the depth buffer holds, not a normal-mapped one) and rotated about it by the unit
+/// 2-D vector `rot` (ao_rotation_noise, per pixel), placed at p + radius · frame · kernel[i]; a point
+/// behind the depth buffer by more than the bias occludes, weighted by the range check
+/// smoothstep(0, 1, radius / |p.z - surface z|) (a surface far in front of the point, e.g. a
+/// foreground object over a background, counts little). The bias is `bias` (view units) plus a
+/// footprint term per sample: the depth buffer holds each texel's centre, so a sample is compared
+/// with a surface point up to half a texel away from where it projects, and on the receiving plane
+/// that half texel spans t |n.x| / |n . r| · (1/width) / P[0][0] (+ the same in y) of depth, t and r
+/// the plane's distance and the view ray at the sample (inv_size = (1/width, 1/height)); at grazing
+/// angles that is metres, which a constant bias cannot cover. With it a flat surface reads 0
+/// (tests/test_ssao.cpp: every pixel of a floor out to 100 units, kernels of 8 to 64 samples).
+/// Returns the occluded fraction in [0, 1] (ambient light factor = 1 - it). Cost: n (projection +
+/// read + rebuild + 2 dot + 1 div) + a frame (1 rsqrt, 1 cross).
 RK_INLINE float rk_ao_hemisphere(RK_AO_MAP depth, vec3 p, vec3 nrm, float radius, vec3 kernel[RK_AO_MAX_SAMPLES], uint n, vec2 rot,
                                  float bias, vec2 inv_size, vec3 k, vec4 ray, vec4 proj)
 {
     uint nn = clamp(n, 1u, uint(RK_AO_MAX_SAMPLES));
     vec3 nz = rk_normalize_safe(nrm, vec3(0.0f, 0.0f, 1.0f));
-    // Footprint bias: the plane through p with normal nz meets the view ray t (a, b, -1) at
-    // t = (nz . p) / (nz . r); over half a texel, a changes by inv_size.x / P[0][0] (b likewise), and
-    // t by t |nz.x| / |nz . r| times that.
-    float tp = max(-p.z, 0.0f);
-    vec3 rdir = p / max(tp, RK_FLT_MIN);
-    float nr = abs(dot(nz, rdir));
+    // The plane through p with normal nz meets the view ray t (a, b, -1) at t = (nz . p) / (nz . r);
+    // over half a texel, a changes by inv_size.x / P[0][0] (b likewise), and t by
+    // t |nz.x| / |nz . r| times that (+ the y term).
     float reach = abs(nz.x) * abs(inv_size.x) / max(abs(proj.x), RK_FLT_MIN) + abs(nz.y) * abs(inv_size.y) / max(abs(proj.y), RK_FLT_MIN);
-    float foot = nr > 1.0e-6f ? min(tp / nr * reach, RK_FLT_MAX) : RK_FLT_MAX;
-    float eff_bias = min(max(bias, 0.0f) + foot, RK_FLT_MAX);
+    float np = clamp(dot(nz, rk_ao_clamp3_(p)), -RK_FLT_MAX, RK_FLT_MAX);
+    float b0 = max(bias, 0.0f);
     vec3 rv = vec3(rot.x, rot.y, 0.0f);
     vec3 t = rv - nz * dot(rv, nz);
     // A rotation vector (almost) along the normal: any perpendicular axis.
@@ -139,11 +142,16 @@ RK_INLINE float rk_ao_hemisphere(RK_AO_MAP depth, vec3 p, vec3 nrm, float radius
     for (uint i = 0u; i < uint(RK_AO_MAX_SAMPLES); ++i) {
         if (i >= nn) break;
         vec3 kv = kernel[i];
-        vec3 s = p + r * (t * kv.x + b * kv.y + nz * kv.z);
+        vec3 s = rk_ao_clamp3_(p + r * (t * kv.x + b * kv.y + nz * kv.z));
         vec2 uv = rk_ao_project(s, proj);
         if (!rk_ao_inside(uv)) continue;
+        // The footprint at the sample's own ray (s lies in front of the eye: rk_ao_project checked).
+        vec3 rs = s / max(-s.z, RK_FLT_MIN);
+        float nr = abs(dot(nz, rs));
+        float ts = nr > 1.0e-6f ? abs(np) / nr : RK_FLT_MAX;
+        float foot = nr > 1.0e-6f ? min(ts / nr * reach, RK_FLT_MAX) : RK_FLT_MAX;
         float sz = rk_ao_view_pos(depth, uv, k, ray).z;
-        if (sz >= s.z + eff_bias) {
+        if (sz > s.z + min(b0 + foot, RK_FLT_MAX)) {
             float dz = abs(p.z - sz);
             occ += dz > r ? smoothstep(0.0f, 1.0f, r / max(dz, RK_FLT_MIN)) : 1.0f;
         }
@@ -168,7 +176,7 @@ RK_INLINE float rk_ao_blur(RK_AO_MAP ao, RK_AO_MAP depth, vec2 uv, vec2 step, in
         if (i < -tn || i > tn) continue;
         vec2 q = vec2(uv.x + float(i) * step.x, uv.y + float(i) * step.y);
         float d = rk_gb_linear_depth(rk_ao_read(depth, q), k);
-        float rel = (d - dc) / max(dc, RK_FLT_MIN) * max(sharpness, 0.0f);
+        float rel = clamp((d - dc) / max(dc, RK_FLT_MIN), -1.0e18f, 1.0e18f) * min(max(sharpness, 0.0f), 1.0e18f);
         float w = exp(-0.5f * float(i * i) / (sigma * sigma)) * exp(-min(rel * rel, 80.0f));
         float a = rk_ao_read(ao, q);
         sum += w * (a >= 0.0f ? min(a, 1.0f) : 0.0f);  // AO is in [0, 1]; NaN reads as 0
