@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -432,6 +433,41 @@ TEST(Relief, VerticalRayAndFlatMap)
         EXPECT_EQ(p.x, uv.x);
         EXPECT_EQ(p.y, uv.y);
     }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Relief, DegenerateHeightfields)
+{
+    // One texel, a 2 x 1 strip, and heights with NaN (read as the deepest level): the generators
+    // finish and every method returns finite hits inside [0, 1] depth.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<ReliefMapCpu> maps = {relief_from_heights(1, 1, {0.3f}), relief_from_heights(2, 1, {1.0f, 0.0f}),
+                                      relief_from_heights(3, 3, {nan, 0.5f, 1.0f, 0.2f, nan, 0.9f, 0.0f, 1.0f, nan})};
+    for (ReliefMapCpu& m : maps) {
+        for (const vec2& t : m.texels) EXPECT_TRUE(std::isfinite(t.x) && t.x >= 0.0f && t.x <= 1.0f);
+        ReliefMapCpu cones = m, relaxed = m;
+        relief_build_cones(cones);
+        relief_build_relaxed_cones(relaxed, 4);
+        for (const vec2& t : cones.texels) EXPECT_TRUE(std::isfinite(t.y) && t.y >= 0.0f);
+        for (const vec2& t : relaxed.texels) EXPECT_TRUE(std::isfinite(t.y) && t.y >= 0.0f);
+        for (const vec3& v : {vec3(0.0f, 0.0f, 1.0f), glm::normalize(vec3(0.7f, -0.2f, 0.3f)), vec3(1.0f, 0.0f, 0.0f)}) {
+            const vec2 uv(0.37f, 0.61f);
+            const vec3 r[] = {rk_relief_steep(m, uv, v, 0.1f, 16u), rk_relief_pom(m, uv, v, 0.1f, 16u), rk_relief_relief(m, uv, v, 0.1f, 8u, 6u),
+                              rk_relief_cone(cones, uv, v, 0.1f, 16u), rk_relief_relaxed_cone(relaxed, uv, v, 0.1f, 8u, 6u)};
+            for (const vec3& h : r) {
+                EXPECT_TRUE(std::isfinite(h.x) && std::isfinite(h.y) && std::isfinite(h.z));
+                EXPECT_GE(h.z, 0.0f);
+                EXPECT_LE(h.z, 1.0f);
+            }
+        }
+    }
+    // A one-texel map is flat: every method hits at its depth straight below... along the ray.
+    const ReliefMapCpu one = relief_from_heights(1, 1, {0.3f});  // depth 0.7 everywhere
+    const vec3 hit = rk_relief_pom(one, vec2(0.5f), glm::normalize(vec3(0.3f, 0.0f, 1.0f)), 0.1f, 32u);
+    EXPECT_NEAR(hit.z, 0.7f, 1e-4f);
 }
 
 }  // namespace
