@@ -48,62 +48,28 @@ rktest::Scene bench_scene()
     return s;
 }
 
-/// The orthographic map of a directional light travelling along `dir`, and the lookup set-up.
+/// The bench's world: the scene, the light's orthographic map (tests/shadow_scene.hpp's render_map:
+/// one ray per texel centre), and the camera points that face the sun with their exact visibility.
 struct World {
     rktest::Scene scene = bench_scene();
-    dvec3 dir, right, up, back;
-    double x0 = 0, y0 = 0, size = 0, z_top = 0, range = 0;
-    raykit::ShadowMapCpu map;
+    rktest::LightMap lm;
     struct Point {
         dvec3 p, n;
         double exact;  // visible fraction of the sun's disk
     };
     std::vector<Point> points;
-
-    vec3 project(dvec3 p) const
-    {
-        return vec3(float((glm::dot(p, right) - x0) / size), float((glm::dot(p, up) - y0) / size), float((z_top - glm::dot(p, back)) / range));
-    }
-    double texel() const { return size / kMapSize; }
 };
 
 const World& world()
 {
     static const World w = [] {
         World W;
-        W.dir = glm::normalize(dvec3(0.4, -0.8, 0.3));
-        W.right = glm::normalize(glm::cross(W.dir, dvec3(0, 1, 0)));
-        W.up = glm::cross(W.right, W.dir);
-        W.back = -W.dir;
-        double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
-        for (int i = 0; i < 8; ++i) {
-            const dvec3 p((i & 1) ? 6.0 : -6.0, (i & 2) ? 3.0 : 0.0, (i & 4) ? 6.0 : -6.0);
-            xmin = std::min(xmin, glm::dot(p, W.right));
-            xmax = std::max(xmax, glm::dot(p, W.right));
-            ymin = std::min(ymin, glm::dot(p, W.up));
-            ymax = std::max(ymax, glm::dot(p, W.up));
-            zmin = std::min(zmin, glm::dot(p, W.back));
-            zmax = std::max(zmax, glm::dot(p, W.back));
-        }
-        W.size = std::max(xmax - xmin, ymax - ymin);
-        W.x0 = xmin;
-        W.y0 = ymin;
-        W.z_top = zmax + 0.5;
-        W.range = W.z_top - zmin + 0.5;
-        W.map.width = W.map.height = kMapSize;
-        W.map.depth.resize(size_t(kMapSize) * size_t(kMapSize));
-        for (int j = 0; j < kMapSize; ++j)
-            for (int i = 0; i < kMapSize; ++i) {
-                const dvec3 o = (W.x0 + (i + 0.5) * W.texel()) * W.right + (W.y0 + (j + 0.5) * W.texel()) * W.up + W.z_top * W.back;
-                double t;
-                dvec3 n;
-                W.map.depth[size_t(j) * size_t(kMapSize) + size_t(i)] = float(W.scene.hit(o, W.dir, 0.0, t, n) ? std::min(t / W.range, 1.0) : 1.0);
-            }
+        W.lm = rktest::render_map(W.scene, dvec3(0.4, -0.8, 0.3), kMapSize, 6.0, false);
         // The camera's visible points that face the sun, with the exact soft visibility.
         const dvec3 eye(0.5, 7.0, 11.0), at(0.0, 0.6, 0.0);
         const int cw = 160, ch = 120;
         const glm::dmat4 inv = glm::inverse(glm::perspective(0.9, double(cw) / ch, 0.1, 100.0) * glm::lookAt(eye, at, dvec3(0, 1, 0)));
-        const dvec3 L = -W.dir;
+        const dvec3 L = -W.lm.dir;
         const double tr = std::tan(0.5 * kSunDiameter);
         for (int y = 0; y < ch; ++y)
             for (int x = 0; x < cw; ++x) {
@@ -120,7 +86,7 @@ const World& world()
                     for (int b = 0; b < 16; ++b) {
                         // Stratified over the disk (concentric map of the 16 x 16 cell centres).
                         const vec2 s = raykit::concentric_disk(vec2(float(-1.0 + (a + 0.5) / 8.0), float(-1.0 + (b + 0.5) / 8.0)));
-                        const dvec3 Lk = glm::normalize(L + tr * (double(s.x) * W.right + double(s.y) * W.up));
+                        const dvec3 Lk = glm::normalize(L + tr * (double(s.x) * W.lm.right + double(s.y) * W.lm.up));
                         double ts;
                         dvec3 ns;
                         ++total;
@@ -146,12 +112,12 @@ struct Lookup {
 std::vector<Lookup> lookups(double kernel)
 {
     const World& W = world();
-    const double td = W.texel() / W.range;
+    const double td = W.lm.texel() / W.lm.range;
     std::vector<Lookup> out;
     for (size_t k = 0; k < W.points.size(); ++k) {
         const World::Point& q = W.points[k];
-        const float ndl = float(glm::dot(q.n, -W.dir));
-        vec3 uvz = W.project(q.p);
+        const float ndl = float(glm::dot(q.n, -W.lm.dir));
+        vec3 uvz = W.lm.project(q.p);
         uvz.z -= raykit::rk_sh_slope_bias(ndl, float(0.5 * td), float((1.0 + kernel) * td), float((10.0 + kernel) * td));
         out.push_back({uvz, raykit::rk_sh_rotation(uvec2(uint(k % 160u), uint(k / 160u)))});
     }
@@ -179,7 +145,7 @@ void register_all()
                "Shadow filters against exact visibility: one filtered lookup of a 1024^2 map per call (C++ twin of "
                "the texture unit); error = |lit fraction - visible fraction of the sun's disk|.");
     const World& W = world();
-    const ShadowMapCpu* m = &W.map;
+    const ShadowMapCpu* m = &W.lm.map;
     const float radius = float(1.5 / kMapSize);
     row("compare", "taps:1", "rk_sh_compare(map, uv, ref) (one hardware 2x2 compare)", 0.5,
         [m](const Lookup& l) { return rk_sh_compare(*m, vec2(l.uvz.x, l.uvz.y), l.uvz.z); });
@@ -201,10 +167,10 @@ void register_all()
         [m, wide](const Lookup& l) { return rk_sh_pcf_vogel(*m, l.uvz, wide, 16u, l.phi); });
     // PCSS for a directional light: a virtual light very far away and wide in proportion, so that
     // (d_receiver - d_blocker) w_light / d_blocker is the gap times the sun's angular diameter.
-    const double virtual_d = 1e4 * W.range;
+    const double virtual_d = 1e4 * W.lm.range;
     const float w_light = float(2.0 * virtual_d * std::tan(0.5 * kSunDiameter));
-    const float search = float(2.0 * kSunDiameter / W.size);  // covers a 2-unit gap's penumbra
-    const float d_near = float(virtual_d), d_range = float(W.range), uv_per_unit = float(1.0 / W.size), min_r = float(0.5 / kMapSize);
+    const float search = float(2.0 * kSunDiameter / W.lm.size);  // covers a 2-unit gap's penumbra
+    const float d_near = float(virtual_d), d_range = float(W.lm.range), uv_per_unit = float(1.0 / W.lm.size), min_r = float(0.5 / kMapSize);
     for (uint n : {16u, 32u})
         row("pcss", "taps:" + std::to_string(n), "rk_sh_pcss(map, map, uvz, ..., " + std::to_string(n) + ", phi) (blocker search + Vogel)", 4.0,
             [=](const Lookup& l) { return rk_sh_pcss(*m, *m, l.uvz, search, w_light, d_near, d_range, uv_per_unit, min_r, n, l.phi); });

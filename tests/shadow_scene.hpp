@@ -2,7 +2,8 @@
 // tests/test_shadow_omni.cpp, point light): a ground square, spheres and boxes (thin plates and
 // walls), intersected exactly in float64, so that every camera pixel can be classified by a ray cast
 // to the light and every shadow-map texel made by a ray cast through its centre (what a rasteriser
-// stores there).
+// stores there); LightMap / render_map make a directional light's map of it (also used by
+// bench/bench_shadow.cpp).
 #pragma once
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "raykit/shadow_filter.hpp"
 
 namespace rktest {
 
@@ -99,6 +102,65 @@ inline Scene test_scene()
     s.boxes = {{dvec3(-1.0, 1.2, 1.8), dvec3(1.2, 1.25, 3.2)},   // a thin floating plate
                {dvec3(3.0, 0.0, -3.0), dvec3(3.05, 2.0, 0.0)}};  // a thin wall on the ground
     return s;
+}
+
+/// A directional light's orthographic shadow map: light space (right, up, back = -dir), the box
+/// [x0, x0 + size]^2 across, depth = (distance from the plane at back = z_top) / range.
+struct LightMap {
+    dvec3 dir, right, up, back;
+    double x0 = 0, y0 = 0, size = 0, z_top = 0, range = 0;
+    raykit::ShadowMapCpu map;
+    double texel() const { return size / map.width; }
+    raykit::vec3 project(dvec3 p) const
+    {
+        const double u = (glm::dot(p, right) - x0) / size, v = (glm::dot(p, up) - y0) / size;
+        const double d = (z_top - glm::dot(p, back)) / range;
+        return raykit::vec3(float(u), float(v), float(map.reversed ? 1.0 - d : d));
+    }
+};
+
+/// render_map: the orthographic map of a light travelling along dir over the scene region |x|, |z|
+/// <= half_extent, 0 <= y <= 3, res x res texels, each the depth of the first hit along the ray
+/// through its centre (1: nothing), reversed-Z when asked.
+inline LightMap render_map(const Scene& sc, dvec3 dir, int res, double half_extent, bool reversed)
+{
+    LightMap lm;
+    lm.dir = glm::normalize(dir);
+    const dvec3 ref = std::abs(lm.dir.y) < 0.99 ? dvec3(0, 1, 0) : dvec3(1, 0, 0);
+    lm.right = glm::normalize(glm::cross(lm.dir, ref));
+    lm.up = glm::cross(lm.right, lm.dir);
+    lm.back = -lm.dir;
+    // The box around the scene region |x|, |z| <= half_extent, 0 <= y <= 3.
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
+    for (int i = 0; i < 8; ++i) {
+        const dvec3 p((i & 1) ? half_extent : -half_extent, (i & 2) ? 3.0 : 0.0, (i & 4) ? half_extent : -half_extent);
+        xmin = std::min(xmin, glm::dot(p, lm.right));
+        xmax = std::max(xmax, glm::dot(p, lm.right));
+        ymin = std::min(ymin, glm::dot(p, lm.up));
+        ymax = std::max(ymax, glm::dot(p, lm.up));
+        zmin = std::min(zmin, glm::dot(p, lm.back));
+        zmax = std::max(zmax, glm::dot(p, lm.back));
+    }
+    lm.size = std::max(xmax - xmin, ymax - ymin);
+    lm.x0 = xmin;
+    lm.y0 = ymin;
+    lm.z_top = zmax + 0.5;
+    lm.range = lm.z_top - zmin + 0.5;
+    lm.map.width = lm.map.height = res;
+    lm.map.reversed = reversed;
+    lm.map.depth.resize(size_t(res) * size_t(res));
+    for (int j = 0; j < res; ++j)
+        for (int i = 0; i < res; ++i) {
+            const double x = lm.x0 + (i + 0.5) * lm.size / res, y = lm.y0 + (j + 0.5) * lm.size / res;
+            const dvec3 o = x * lm.right + y * lm.up + lm.z_top * lm.back;
+            double t;
+            dvec3 n;
+            double d = 1.0;
+            if (sc.hit(o, lm.dir, 0.0, t, n)) d = std::min(t / lm.range, 1.0);
+            // The float a depth buffer stores.
+            lm.map.depth[size_t(j) * size_t(res) + size_t(i)] = float(reversed ? 1.0 - d : d);
+        }
+    return lm;
 }
 
 }  // namespace rktest
