@@ -66,34 +66,23 @@ const World& world()
         World W;
         W.lm = rktest::render_map(W.scene, dvec3(0.4, -0.8, 0.3), kMapSize, 6.0, false);
         // The camera's visible points that face the sun, with the exact soft visibility.
-        const dvec3 eye(0.5, 7.0, 11.0), at(0.0, 0.6, 0.0);
-        const int cw = 160, ch = 120;
-        const glm::dmat4 inv = glm::inverse(glm::perspective(0.9, double(cw) / ch, 0.1, 100.0) * glm::lookAt(eye, at, dvec3(0, 1, 0)));
         const dvec3 L = -W.lm.dir;
         const double tr = std::tan(0.5 * kSunDiameter);
-        for (int y = 0; y < ch; ++y)
-            for (int x = 0; x < cw; ++x) {
-                const glm::dvec4 q = inv * glm::dvec4((x + 0.5) / cw * 2 - 1, (y + 0.5) / ch * 2 - 1, 0.5, 1.0);
-                const dvec3 d = glm::normalize(dvec3(q) / q.w - eye);
-                double t;
-                dvec3 n;
-                if (!W.scene.hit(eye, d, 0.0, t, n)) continue;
-                if (glm::dot(n, d) > 0.0) n = -n;
-                if (glm::dot(n, L) <= 0.05) continue;  // facing away or grazing: dark by N.L
-                const dvec3 p = eye + t * d;
-                int seen = 0, total = 0;
-                for (int a = 0; a < 16; ++a)
-                    for (int b = 0; b < 16; ++b) {
-                        // Stratified over the disk (concentric map of the 16 x 16 cell centres).
-                        const vec2 s = raykit::concentric_disk(vec2(float(-1.0 + (a + 0.5) / 8.0), float(-1.0 + (b + 0.5) / 8.0)));
-                        const dvec3 Lk = glm::normalize(L + tr * (double(s.x) * W.lm.right + double(s.y) * W.lm.up));
-                        double ts;
-                        dvec3 ns;
-                        ++total;
-                        if (!W.scene.hit(p + 1e-7 * n, Lk, 1e-9, ts, ns)) ++seen;
-                    }
-                W.points.push_back({p, n, double(seen) / total});
-            }
+        rktest::for_each_camera_hit(W.scene, 160, 120, [&](dvec3 p, dvec3 n) {
+            if (glm::dot(n, L) <= 0.05) return;  // facing away or grazing: dark by N.L
+            int seen = 0, total = 0;
+            for (int a = 0; a < 16; ++a)
+                for (int b = 0; b < 16; ++b) {
+                    // Stratified over the disk (concentric map of the 16 x 16 cell centres).
+                    const vec2 s = raykit::concentric_disk(vec2(float(-1.0 + (a + 0.5) / 8.0), float(-1.0 + (b + 0.5) / 8.0)));
+                    const dvec3 Lk = glm::normalize(L + tr * (double(s.x) * W.lm.right + double(s.y) * W.lm.up));
+                    double ts;
+                    dvec3 ns;
+                    ++total;
+                    if (!W.scene.hit(p + 1e-7 * n, Lk, 1e-9, ts, ns)) ++seen;
+                }
+            W.points.push_back({p, n, double(seen) / total});
+        });
         return W;
     }();
     return w;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "raykit/shadow_filter.hpp"
 
@@ -102,6 +103,27 @@ inline Scene test_scene()
     s.boxes = {{dvec3(-1.0, 1.2, 1.8), dvec3(1.2, 1.25, 3.2)},   // a thin floating plate
                {dvec3(3.0, 0.0, -3.0), dvec3(3.05, 2.0, 0.0)}};  // a thin wall on the ground
     return s;
+}
+
+/// for_each_camera_hit: the proofs' camera (eye (0.5, 7, 11) looking at (0, 0.6, 0), a vertical
+/// field of view of 0.9 rad) over a w x h image: fn(p, n) for every pixel, in row order, whose ray
+/// through the pixel centre hits the scene, p the first hit and n its unit normal turned towards the
+/// eye.
+template <class Fn>
+void for_each_camera_hit(const Scene& sc, int w, int h, Fn fn)
+{
+    const dvec3 eye(0.5, 7.0, 11.0), at(0.0, 0.6, 0.0);
+    const glm::dmat4 view = glm::lookAt(eye, at, dvec3(0, 1, 0)), inv = glm::inverse(glm::perspective(0.9, double(w) / h, 0.1, 100.0) * view);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::dvec4 q = inv * glm::dvec4((x + 0.5) / w * 2 - 1, (y + 0.5) / h * 2 - 1, 0.5, 1.0);
+            const dvec3 d = glm::normalize(dvec3(q) / q.w - eye);
+            double t;
+            dvec3 n;
+            if (!sc.hit(eye, d, 0.0, t, n)) continue;
+            if (glm::dot(n, d) > 0.0) n = -n;
+            fn(eye + t * d, n);
+        }
 }
 
 /// A directional light's orthographic shadow map: light space (right, up, back = -dir), the box

@@ -117,25 +117,16 @@ struct Pixel {
 std::vector<Pixel> camera_pixels(const Scene& sc, int w, int h)
 {
     std::vector<Pixel> px;
-    const dvec3 eye(0.5, 7.0, 11.0), at(0.0, 0.6, 0.0);
-    const glm::dmat4 view = glm::lookAt(eye, at, dvec3(0, 1, 0)), inv = glm::inverse(glm::perspective(0.9, double(w) / h, 0.1, 100.0) * view);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const glm::dvec4 q = inv * glm::dvec4((x + 0.5) / w * 2 - 1, (y + 0.5) / h * 2 - 1, 0.5, 1.0);
-            const dvec3 d = glm::normalize(dvec3(q) / q.w - eye);
-            double t;
-            dvec3 n;
-            if (!sc.hit(eye, d, 0.0, t, n)) continue;
-            if (glm::dot(n, d) > 0.0) n = -n;
-            const dvec3 p = eye + t * d, to_light = kLight - p;
-            const double dist = glm::length(to_light);
-            const dvec3 L = to_light / dist;
-            if (glm::dot(n, L) <= 0.0) continue;  // facing away: dark by N.L, not scored
-            double ts;
-            dvec3 ns;
-            const bool blocked = sc.hit(p + n * 1e-7, L, 1e-9, ts, ns) && ts < dist;
-            px.push_back({p, n, !blocked});
-        }
+    rktest::for_each_camera_hit(sc, w, h, [&](dvec3 p, dvec3 n) {
+        const dvec3 to_light = kLight - p;
+        const double dist = glm::length(to_light);
+        const dvec3 L = to_light / dist;
+        if (glm::dot(n, L) <= 0.0) return;  // facing away: dark by N.L, not scored
+        double ts;
+        dvec3 ns;
+        const bool blocked = sc.hit(p + n * 1e-7, L, 1e-9, ts, ns) && ts < dist;
+        px.push_back({p, n, !blocked});
+    });
     return px;
 }
 
