@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "raykit/shader_source.hpp"
+#include "glsl_scan.hpp"
 #include "shader_mem_files.hpp"
 
 using raykit::Error;
@@ -443,40 +444,7 @@ TEST(Dialect, ReadmeListsEveryOptionMacro)
     EXPECT_GE(n, 29);
 }
 
-namespace {
-// Blanks the parts of a shared file that only GLSL sees (`#ifndef __cplusplus` blocks and the
-// `#else` of `#ifdef __cplusplus`), keeping line structure.
-std::string cpp_view(const std::string& code)
-{
-    std::istringstream in(code);
-    std::string line, out;
-    std::vector<std::pair<int, bool>> stack;  // kind (0 other, 1 GLSL only, 2 C++ only), active
-    while (std::getline(in, line)) {
-        size_t i = line.find_first_not_of(" \t");
-        const std::string t = i == std::string::npos ? std::string() : line.substr(i);
-        if (t.rfind("#if", 0) == 0) {
-            const int kind = t.rfind("#ifndef __cplusplus", 0) == 0 ? 1 : (t.rfind("#ifdef __cplusplus", 0) == 0 ? 2 : 0);
-            stack.push_back({kind, kind != 1});
-            out += "\n";
-            continue;
-        }
-        if (t.rfind("#else", 0) == 0 && !stack.empty()) {
-            if (stack.back().first != 0) stack.back().second = !stack.back().second;
-            out += "\n";
-            continue;
-        }
-        if (t.rfind("#endif", 0) == 0 && !stack.empty()) {
-            stack.pop_back();
-            out += "\n";
-            continue;
-        }
-        bool active = true;
-        for (const auto& s : stack) active = active && s.second;
-        out += (active ? line : std::string()) + "\n";
-    }
-    return out;
-}
-}  // namespace
+using rktest::cpp_view;
 
 // The one-definition rule by construction: every function of a file that C++ compiles whose body
 // depends on an option macro, directly or through a macro or function that does, sits between
