@@ -1260,6 +1260,55 @@ TEST(Bake, BilinearAgainstFloat64)
     EXPECT_EQ(sample_image_bilinear(img, vec2(10.5f / 128.0f, 20.5f / 64.0f)), img.texel(10, 20));
 }
 
+// The cube helpers select faces by shadow.glsl's rk_sh_cube_face_uv (one rule for shaders and CPU):
+// the same face, sc = 2 s - 1 and tc = 2 t - 1, on random directions and on every kind of exact tie
+// (edges and corners, both signs, +-0), where the rule takes x before y before z; at a tie the face
+// coordinates still name the point of d (cube_face_direction of them is parallel to d). The zero
+// vector selects +Z's centre, and an all-denormal vector the face of its direction.
+TEST(Cube, FaceSelectionIsTheShadowRule)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    int ties = 0;
+    auto check = [&](vec3 d) {
+        float sc = 0.0f, tc = 0.0f;
+        const int face = cube_face_select(d, sc, tc);
+        const vec3 r = rk_sh_cube_face_uv(d);
+        ASSERT_EQ(face, static_cast<int>(r.z)) << fmt(d.x, d.y, d.z);
+        EXPECT_EQ(sc, 2.0f * r.x - 1.0f) << fmt(d.x, d.y, d.z);
+        EXPECT_EQ(tc, 2.0f * r.y - 1.0f) << fmt(d.x, d.y, d.z);
+        const glm::dvec3 back = glm::normalize(glm::dvec3(cube_face_direction(face, sc, tc)));
+        EXPECT_LT(glm::length(back - glm::normalize(glm::dvec3(d))), 3e-7) << fmt(d.x, d.y, d.z);
+    };
+    for (int i = 0; i < 100000; ++i) check(vec3(u(rng), u(rng), u(rng)));
+    for (int i = 0; i < 20000; ++i) {
+        const float m = std::max(std::abs(u(rng)), 1e-3f), c = u(rng) * m;
+        const float a = u(rng) < 0.0f ? -m : m, b = u(rng) < 0.0f ? -m : m, e = u(rng) < 0.0f ? -m : m;
+        const vec3 edge_xy(a, b, c), edge_xz(a, c, b), edge_yz(c, a, b), corner(a, b, e);
+        for (const vec3& d : {edge_xy, edge_xz, edge_yz, corner}) {
+            check(d);
+            ++ties;
+        }
+        // Which face: the first of the tied axes in x, y, z order.
+        float sc = 0.0f, tc = 0.0f;
+        EXPECT_EQ(cube_face_select(edge_xy, sc, tc), a < 0.0f ? 1 : 0);
+        EXPECT_EQ(cube_face_select(edge_yz, sc, tc), a < 0.0f ? 3 : 2);
+        EXPECT_EQ(cube_face_select(corner, sc, tc), a < 0.0f ? 1 : 0);
+    }
+    for (const vec3& d : {vec3(1.0f, -0.0f, 1.0f), vec3(-0.0f, 1.0f, -1.0f), vec3(0.0f, -0.0f, 1.0f)}) check(d);
+    EXPECT_EQ(ties, 80000);
+    float sc = 1.0f, tc = 1.0f;
+    EXPECT_EQ(cube_face_select(vec3(0.0f), sc, tc), 4);
+    EXPECT_EQ(sc, 0.0f);
+    EXPECT_EQ(tc, 0.0f);
+    const vec3 tiny(1e-40f, 3e-41f, -2e-40f);
+    float sc2 = 0.0f, tc2 = 0.0f;
+    EXPECT_EQ(cube_face_select(tiny, sc, tc), cube_face_select(tiny * 1e30f, sc2, tc2));
+    EXPECT_NEAR(sc, sc2, 1e-6f);
+    EXPECT_NEAR(tc, tc2, 1e-6f);
+    EXPECT_EQ(cube_face_select(tiny, sc, tc), 5);
+}
+
 TEST(Bake, SelfDirectionMapsTexelsAndLookups)
 {
     // Each baker with env(d) = d: with one sample per texel every texel holds the float64 direction

@@ -28,6 +28,10 @@
 
 namespace raykit {
 #include "raykit/paraboloid.glsl"
+// The cube-face rule of the cube-map helpers below: shadow.glsl's rk_sh_cube_face_uv (shadow.glsl
+// is option-free and includes only common.glsl and paraboloid.glsl; raykit/shadow.hpp's own
+// include of it is then a no-op).
+#include "raykit/shadow.glsl"
 
 /// An RGB float image: width * height texels, 3 floats each, row-major, row 0 first.
 struct EnvImage {
@@ -187,36 +191,31 @@ inline vec3 cube_face_direction(int face, float sc, float tc)
     }
 }
 
-/// The face a direction selects (largest |component|; ties prefer z, then y) and its face
-/// coordinates sc, tc in [-1, 1] (GL table 8.19). The zero vector selects +Z's centre.
+namespace detail {
+/// (s, t, face) of direction d: rk_sh_cube_face_uv (shadow.glsl), the one cube-face rule that the
+/// shaders and the CPU share (OpenGL's Table 8.19; ties between axes x before y before z, +0 and
+/// -0 alike), except for two inputs it maps to the centre of +X: the zero vector reads the centre
+/// of +Z, and a vector whose components are all denormal is scaled by 2^64 (exact) first, so that
+/// it selects the face of its direction.
+inline vec3 cube_face_st(vec3 d)
+{
+    const float m = std::max(std::abs(d.x), std::max(std::abs(d.y), std::abs(d.z)));
+    if (m == 0.0f) return vec3(0.5f, 0.5f, 4.0f);
+    return rk_sh_cube_face_uv(m < RK_FLT_MIN ? d * 18446744073709551616.0f : d);
+}
+}  // namespace detail
+
+/// The face a direction selects (largest |component|; ties between axes, at the cube's edges and
+/// corners, x before y before z, as rk_sh_cube_face_uv of shadow.glsl, which this is) and its face
+/// coordinates sc, tc in [-1, 1] (GL table 8.19): 2 s - 1, 2 t - 1 of rk_sh_cube_face_uv. Max error
+/// against the float64 ratios: 9e-8 (1e7 random directions). At a tie either face holds the same
+/// point of the shared edge. The zero vector selects +Z's centre. Domain: finite d.
 inline int cube_face_select(vec3 d, float& sc, float& tc)
 {
-    const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
-    int face;
-    float ma;
-    if (az >= ax && az >= ay) {
-        face = d.z < 0.0f ? 5 : 4;
-        ma = az;
-        sc = d.z < 0.0f ? -d.x : d.x;
-        tc = -d.y;
-    } else if (ay >= ax) {
-        face = d.y < 0.0f ? 3 : 2;
-        ma = ay;
-        sc = d.x;
-        tc = d.y < 0.0f ? -d.z : d.z;
-    } else {
-        face = d.x < 0.0f ? 1 : 0;
-        ma = ax;
-        sc = d.x < 0.0f ? d.z : -d.z;
-        tc = -d.y;
-    }
-    if (!(ma > 0.0f)) {
-        sc = tc = 0.0f;
-        return 4;
-    }
-    sc = std::clamp(sc / ma, -1.0f, 1.0f);
-    tc = std::clamp(tc / ma, -1.0f, 1.0f);
-    return face;
+    const vec3 r = detail::cube_face_st(d);
+    sc = 2.0f * r.x - 1.0f;
+    tc = 2.0f * r.y - 1.0f;
+    return static_cast<int>(r.z);
 }
 
 /// The unit direction of texel (i, j)'s centre on `face` of a cube of `size` texels.
@@ -230,7 +229,9 @@ inline vec3 cube_texel_direction(int face, int i, int j, int size)
 namespace detail {
 /// Texel (i, j) of `face`, where i, j may be one texel outside the face: such texels are taken
 /// from the neighbouring face, at the texel nearest to the continued direction (seamless cube
-/// filtering, like GL_TEXTURE_CUBE_MAP_SEAMLESS).
+/// filtering, like GL_TEXTURE_CUBE_MAP_SEAMLESS). A texel outside in both i and j (next to a cube
+/// corner) is equally near two faces: it is read from the first in x, y, z order (the tie rule of
+/// cube_face_select).
 inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
 {
     const int n = cube.size;
@@ -238,11 +239,10 @@ inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
     const float fn = static_cast<float>(n);
     const vec3 d = cube_face_direction(face, 2.0f * (static_cast<float>(i) + 0.5f) / fn - 1.0f,
                                        2.0f * (static_cast<float>(j) + 0.5f) / fn - 1.0f);
-    float sc = 0.0f, tc = 0.0f;
-    const int f2 = cube_face_select(d, sc, tc);
-    const int i2 = std::clamp(static_cast<int>(std::floor((0.5f * sc + 0.5f) * fn)), 0, n - 1);
-    const int j2 = std::clamp(static_cast<int>(std::floor((0.5f * tc + 0.5f) * fn)), 0, n - 1);
-    return cube.faces[static_cast<std::size_t>(f2)].texel(i2, j2);
+    const vec3 st = cube_face_st(d);
+    const int i2 = std::clamp(static_cast<int>(std::floor(st.x * fn)), 0, n - 1);
+    const int j2 = std::clamp(static_cast<int>(std::floor(st.y * fn)), 0, n - 1);
+    return cube.faces[static_cast<std::size_t>(st.z)].texel(i2, j2);
 }
 }  // namespace detail
 
@@ -255,14 +255,14 @@ inline vec3 cube_fetch_seamless(const EnvCubeMap& cube, int face, int i, int j)
 /// where the off-face taps are nearest-texel (5e6 random directions + refinement); second order
 /// inside a face (tests/test_paraboloid.cpp Bake.SelfDirectionMapsTexelsAndLookups asserts 0.15
 /// texel).
-/// Cost: face selection (3 abs, 2 div), 4 texel reads (an off-face one adds a face direction, a
-/// face selection and 2 floor), 2 floor, 3 vec3 mix.
+/// Cost: face selection (rk_sh_cube_face_uv: 3 abs, 1 div), 4 texel reads (an off-face one adds a
+/// face direction, a face selection and 2 floor), 2 floor, 3 vec3 mix.
 inline vec3 sample_cube_map(const EnvCubeMap& cube, vec3 dir)
 {
-    float sc = 0.0f, tc = 0.0f;
-    const int face = cube_face_select(dir, sc, tc);
+    const vec3 st = detail::cube_face_st(dir);
+    const int face = static_cast<int>(st.z);
     const float n = static_cast<float>(cube.size);
-    const float x = (0.5f * sc + 0.5f) * n - 0.5f, y = (0.5f * tc + 0.5f) * n - 0.5f;
+    const float x = st.x * n - 0.5f, y = st.y * n - 0.5f;
     const float fx = std::floor(x), fy = std::floor(y);
     const float ax = x - fx, ay = y - fy;
     const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
