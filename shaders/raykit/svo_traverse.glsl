@@ -131,6 +131,184 @@ RK_INLINE vec3 rk_svo_trace_entry_normal_(vec3 te, vec3 u)
     return vec3(ax == 0u ? -sign(u.x) : 0.0f, ax == 1u ? -sign(u.y) : 0.0f, ax == 2u ? -sign(u.z) : 0.0f);
 }
 
+/// rk_svo_trace_state_: internal. What rk_svo_trace carries from its set-up through its loop to its
+/// hit: the ray in mirrored cube space and the traversal's current cell and parent. Shared with the
+/// C++ twin svo_trace_rays (include/raykit/svo_trace_simd.hpp), which runs the loop on SIMD lanes
+/// between the same set-up and finish.
+struct rk_svo_trace_state_ {
+    vec3 u;         // unit direction, tiny components replaced (for the entry normal)
+    vec3 coef;      // plane distance t = x * coef - bias on each mirrored axis
+    vec3 bias;
+    uint flip;      // bit a set: axis a mirrored (x -> 3 - x)
+    float t_enter;  // cube-space distance from the caller's origin to the root entry
+    float t_scale;  // caller distance per cube-space distance
+    float t_min;    // the ray's current position (cube space, from the entry point)
+    float t_hi;     // where it leaves the current parent (or t_max)
+    uint top;       // levels above the bricks
+    uint leaf;      // deepest level descended to
+    uint b;         // brick levels
+#if RK_SVO_TRAVERSE_LOD
+    float lod_bias;  // footprint in cube units: lod_bias + lod_slope * (t_enter + t_min)
+    float lod_slope;
+#endif
+    uint handle;    // the parent: descriptor ordinal, or sub-node index inside a brick
+    uint pdesc;     // the parent's descriptor (above the bricks)
+    uvec2 bmask;    // the current brick's mask words
+    uint bsub;      // the current brick's level-(depth-1) mask
+    uint brick;     // the current brick's ordinal
+    uint pmask;     // the parent's child mask
+    int scale;      // 23 - level of the current cell
+    float size;     // its edge, 2^(scale - 23)
+    vec3 pos;       // its minimum corner (mirrored)
+    uint idx;       // its child slot (mirrored; the format's index is idx ^ flip)
+};
+
+/// rk_svo_trace_begin_: internal. rk_svo_trace's set-up: clips the ray to the root and fills `s`
+/// for the loop (true), or writes the final answer to `h` (false: a miss, or a stop at the root).
+RK_INLINE bool rk_svo_trace_begin_(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin, vec3 dir, float t_max, vec2 cone,
+                                   RK_INOUT(rk_svo_trace_hit) h, RK_INOUT(rk_svo_trace_state_) s)
+{
+    h.hit = false;
+    h.t = 0.0f;
+    h.level = 0u;
+    h.cell = uvec3(0u);
+    h.normal = vec3(0.0f);
+    h.node = 0u;
+    h.brick_bit = 0u;
+    h.brick_mask = uvec2(0u);
+    h.iterations = 0u;
+
+    // Normalise the direction (scaled first so that no component overflows or underflows).
+    float m = max(max(abs(dir.x), abs(dir.y)), abs(dir.z));
+    if (!(m >= RK_FLT_MIN) || !(t_max >= 0.0f) || !(tree.root_size > 0.0f) || tree.depth == 0u ||
+        tree.depth > RK_SVO_MAX_DEPTH)
+        return false;
+    vec3 dn = dir / m;
+    float len = length(dn);  // in [1, sqrt(3)]
+    vec3 u = dn / len;
+    // t (caller) = t_cube * t_scale, where t_cube is the distance in root-size units.
+    // (Divided step by step: m * len overflows for |dir| near FLT_MAX; t then underflows towards 0,
+    // which is the true distance to float precision.)
+    s.t_scale = min((tree.root_size / m) / len, RK_FLT_MAX);
+    float inv_size = 1.0f / tree.root_size;
+    vec3 o = (origin - tree.root_min) * inv_size + vec3(1.0f);
+
+    // Tiny components get a tiny value of the same sign (sign bit: -0 is negative).
+    if (abs(u.x) < RK_SVO_TRAVERSE_DIR_EPS) u.x = (floatBitsToUint(u.x) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
+    if (abs(u.y) < RK_SVO_TRAVERSE_DIR_EPS) u.y = (floatBitsToUint(u.y) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
+    if (abs(u.z) < RK_SVO_TRAVERSE_DIR_EPS) u.z = (floatBitsToUint(u.z) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
+    s.u = u;
+
+    // Clip to the root [1, 2]^3 and move the origin to the entry point.
+    vec3 inv_u = vec3(1.0f) / u;
+    vec3 ta = (vec3(1.0f) - o) * inv_u;
+    vec3 tb = (vec3(2.0f) - o) * inv_u;
+    vec3 tlo = min(ta, tb);
+    vec3 thi = max(ta, tb);
+    float t_enter = max(max(max(tlo.x, tlo.y), tlo.z), 0.0f);
+    float t_leave = min(min(thi.x, thi.y), thi.z);
+    float t_lim = t_max > 0.0f ? min(t_max * (m / tree.root_size) * len, RK_FLT_MAX) : 0.0f;
+    if (!(t_enter <= t_leave) || !(t_enter <= t_lim)) return false;
+    s.t_enter = t_enter;
+    o = o + u * t_enter;
+    t_lim = t_lim - t_enter;
+
+    // Mirror to negative directions: t(x) = x * coef - bias on the mirrored axis.
+    vec3 coef = -abs(inv_u);  // -1 / |u|, exactly (IEEE division is sign-symmetric)
+    vec3 bias = coef * o;
+    uint flip = 0u;
+    if (u.x > 0.0f) { flip |= 1u; bias.x = 3.0f * coef.x - bias.x; }
+    if (u.y > 0.0f) { flip |= 2u; bias.y = 3.0f * coef.y - bias.y; }
+    if (u.z > 0.0f) { flip |= 4u; bias.z = 3.0f * coef.z - bias.z; }
+    s.coef = coef;
+    s.bias = bias;
+    s.flip = flip;
+
+    float t_min = max(max(max(2.0f * coef.x - bias.x, 2.0f * coef.y - bias.y), 2.0f * coef.z - bias.z), 0.0f);
+    s.t_min = t_min;
+    s.t_hi = min(min(min(coef.x - bias.x, coef.y - bias.y), coef.z - bias.z), t_lim);
+
+    s.b = rk_svo_brick_levels(tree.depth);
+    s.top = tree.depth - s.b;
+    s.leaf = min(tree.max_level, tree.depth);
+#if RK_SVO_TRAVERSE_LOD
+    // Footprint in cube units: cone.x / root_size + cone.y * t_cube * root_size / root_size.
+    s.lod_bias = max(cone.x, 0.0f) * inv_size;
+    s.lod_slope = max(cone.y, 0.0f);
+#else
+    RK_UNUSED(cone);
+#endif
+
+    // The root (parent at level 0).
+    s.handle = 0u;
+    s.pdesc = 0u;
+    s.bmask = uvec2(0u);
+    s.bsub = 0u;
+    s.brick = 0u;
+    if (s.top > 0u) {
+        s.pdesc = RK_SVO_READ(buf, 0u);
+    } else {
+        uint w0 = rk_svo_word_of(0u, tree.desc_words);
+        s.bmask = uvec2(RK_SVO_READ(buf, w0), RK_SVO_READ(buf, w0 + 1u));
+        s.bsub = s.b == 2u ? rk_svo_brick_submask(s.bmask) : (s.bmask.x & 0xFFu);
+    }
+    s.pmask = rk_svo_trace_child_mask_(0u, s.top, s.pdesc, s.bmask, s.bsub, 0u);
+    bool root_stop = s.leaf == 0u;
+#if RK_SVO_TRAVERSE_LOD
+    root_stop = root_stop || 1.0f <= s.lod_bias + s.lod_slope * (t_enter + t_min);
+#endif
+    if (root_stop) {
+        h.hit = s.pmask != 0u && t_min <= s.t_hi;
+        // Face: the axis whose entry plane is furthest along the ray.
+        h.normal = rk_svo_trace_entry_normal_(2.0f * coef - bias, u);
+        h.t = min((t_enter + t_min) * s.t_scale, RK_FLT_MAX);
+        if (!h.hit) h.normal = vec3(0.0f);
+        return false;
+    }
+
+    // The first cell: the root's child the ray starts in.
+    s.scale = 22;
+    s.size = 0.5f;
+    s.pos = vec3(1.0f);
+    s.idx = 0u;
+    if (1.5f * coef.x - bias.x > t_min) { s.idx |= 1u; s.pos.x = 1.5f; }
+    if (1.5f * coef.y - bias.y > t_min) { s.idx |= 2u; s.pos.y = 1.5f; }
+    if (1.5f * coef.z - bias.z > t_min) { s.idx |= 4u; s.pos.z = 1.5f; }
+    return true;
+}
+
+/// rk_svo_trace_finish_: internal. rk_svo_trace's answer after the loop: `found` (the loop stopped
+/// at a node) or a miss, with `iterations` loop iterations.
+RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_state_ s, bool found, uint iterations,
+                                    RK_INOUT(rk_svo_trace_hit) h)
+{
+    h.iterations = iterations;
+    if (!found) return;
+
+    // Un-mirror the cell, find the entry face, locate the attributes.
+    uint lvl = uint(23 - s.scale);
+    uint c = s.idx ^ s.flip;
+    float px = (s.flip & 1u) != 0u ? 3.0f - s.size - s.pos.x : s.pos.x;
+    float py = (s.flip & 2u) != 0u ? 3.0f - s.size - s.pos.y : s.pos.y;
+    float pz = (s.flip & 4u) != 0u ? 3.0f - s.size - s.pos.z : s.pos.z;
+    uint sh = uint(s.scale);
+    h.cell = uvec3((floatBitsToUint(px) & 0x7FFFFFu) >> sh, (floatBitsToUint(py) & 0x7FFFFFu) >> sh,
+                   (floatBitsToUint(pz) & 0x7FFFFFu) >> sh);
+    h.normal = rk_svo_trace_entry_normal_((s.pos + vec3(s.size)) * s.coef - s.bias, s.u);  // entry planes of the cell
+    h.hit = true;
+    h.level = lvl;
+    h.t = min((s.t_enter + s.t_min) * s.t_scale, RK_FLT_MAX);
+    uint lp = lvl - 1u;
+    if (lp < s.top) {
+        uint far_word = rk_svo_is_far(s.pdesc) ? RK_SVO_READ(buf, s.handle + rk_svo_rel_ptr(s.pdesc)) : 0u;
+        h.node = rk_svo_first_child(s.handle, s.pdesc, far_word) + rk_svo_child_rank(s.pmask, c);
+    } else {
+        h.node = s.brick;
+        h.brick_mask = s.bmask;
+        h.brick_bit = lvl == tree.depth && s.b == 2u ? (c | (s.handle << 3u)) : c;
+    }
+}
+
 /// rk_svo_trace: casts the ray origin + t * dir, t in [0, t_max], through `tree` and returns the
 /// first non-empty voxel (or level-of-detail node) it enters.
 /// Domain: finite origin and dir (dir may have zero or tiny components; a dir below 1.2e-38 in
@@ -146,124 +324,25 @@ RK_INLINE vec3 rk_svo_trace_entry_normal_(vec3 te, vec3 u)
 RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin, vec3 dir, float t_max, vec2 cone)
 {
     rk_svo_trace_hit h;
-    h.hit = false;
-    h.t = 0.0f;
-    h.level = 0u;
-    h.cell = uvec3(0u);
-    h.normal = vec3(0.0f);
-    h.node = 0u;
-    h.brick_bit = 0u;
-    h.brick_mask = uvec2(0u);
-    h.iterations = 0u;
-
-    // Normalise the direction (scaled first so that no component overflows or underflows).
-    float m = max(max(abs(dir.x), abs(dir.y)), abs(dir.z));
-    if (!(m >= RK_FLT_MIN) || !(t_max >= 0.0f) || !(tree.root_size > 0.0f) || tree.depth == 0u ||
-        tree.depth > RK_SVO_MAX_DEPTH)
-        return h;
-    vec3 dn = dir / m;
-    float len = length(dn);  // in [1, sqrt(3)]
-    vec3 u = dn / len;
-    // t (caller) = t_cube * t_scale, where t_cube is the distance in root-size units.
-    // (Divided step by step: m * len overflows for |dir| near FLT_MAX; t then underflows towards 0,
-    // which is the true distance to float precision.)
-    float t_scale = min((tree.root_size / m) / len, RK_FLT_MAX);
-    float inv_size = 1.0f / tree.root_size;
-    vec3 o = (origin - tree.root_min) * inv_size + vec3(1.0f);
-
-    // Tiny components get a tiny value of the same sign (sign bit: -0 is negative).
-    if (abs(u.x) < RK_SVO_TRAVERSE_DIR_EPS) u.x = (floatBitsToUint(u.x) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
-    if (abs(u.y) < RK_SVO_TRAVERSE_DIR_EPS) u.y = (floatBitsToUint(u.y) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
-    if (abs(u.z) < RK_SVO_TRAVERSE_DIR_EPS) u.z = (floatBitsToUint(u.z) & 0x80000000u) != 0u ? -RK_SVO_TRAVERSE_DIR_EPS : RK_SVO_TRAVERSE_DIR_EPS;
-
-    // Clip to the root [1, 2]^3 and move the origin to the entry point.
-    vec3 inv_u = vec3(1.0f) / u;
-    vec3 ta = (vec3(1.0f) - o) * inv_u;
-    vec3 tb = (vec3(2.0f) - o) * inv_u;
-    vec3 tlo = min(ta, tb);
-    vec3 thi = max(ta, tb);
-    float t_enter = max(max(max(tlo.x, tlo.y), tlo.z), 0.0f);
-    float t_leave = min(min(thi.x, thi.y), thi.z);
-    float t_lim = t_max > 0.0f ? min(t_max * (m / tree.root_size) * len, RK_FLT_MAX) : 0.0f;
-    if (!(t_enter <= t_leave) || !(t_enter <= t_lim)) return h;
-    o = o + u * t_enter;
-    t_lim = t_lim - t_enter;
-
-    // Mirror to negative directions: t(x) = x * coef - bias on the mirrored axis.
-    vec3 coef = vec3(-1.0f) / abs(u);
-    vec3 bias = coef * o;
-    uint flip = 0u;  // bit a set: axis a mirrored (x -> 3 - x)
-    if (u.x > 0.0f) { flip |= 1u; bias.x = 3.0f * coef.x - bias.x; }
-    if (u.y > 0.0f) { flip |= 2u; bias.y = 3.0f * coef.y - bias.y; }
-    if (u.z > 0.0f) { flip |= 4u; bias.z = 3.0f * coef.z - bias.z; }
-
-    float t_min = max(max(max(2.0f * coef.x - bias.x, 2.0f * coef.y - bias.y), 2.0f * coef.z - bias.z), 0.0f);
-    float t_hi = min(min(min(coef.x - bias.x, coef.y - bias.y), coef.z - bias.z), t_lim);
-
-    uint b = rk_svo_brick_levels(tree.depth);
-    uint top = tree.depth - b;
-    uint leaf = min(tree.max_level, tree.depth);
-#if RK_SVO_TRAVERSE_LOD
-    // Footprint in cube units: cone.x / root_size + cone.y * t_cube * root_size / root_size.
-    float lod_bias = max(cone.x, 0.0f) * inv_size;
-    float lod_slope = max(cone.y, 0.0f);
-#else
-    RK_UNUSED(cone);
-#endif
-
-    // The root (parent at level 0).
-    uint handle = 0u;
-    uint pdesc = 0u;
-    uvec2 bmask = uvec2(0u);
-    uint bsub = 0u;  // the current brick's level-(depth-1) mask (its own children's mask)
-    uint brick = 0u;
-    if (top > 0u) {
-        pdesc = RK_SVO_READ(buf, 0u);
-    } else {
-        uint w0 = rk_svo_word_of(0u, tree.desc_words);
-        bmask = uvec2(RK_SVO_READ(buf, w0), RK_SVO_READ(buf, w0 + 1u));
-        bsub = b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
-    }
-    uint pmask = rk_svo_trace_child_mask_(0u, top, pdesc, bmask, bsub, 0u);
-    bool root_stop = leaf == 0u;
-#if RK_SVO_TRAVERSE_LOD
-    root_stop = root_stop || 1.0f <= lod_bias + lod_slope * (t_enter + t_min);
-#endif
-    if (root_stop) {
-        h.hit = pmask != 0u && t_min <= t_hi;
-        // Face: the axis whose entry plane is furthest along the ray.
-        h.normal = rk_svo_trace_entry_normal_(2.0f * coef - bias, u);
-        h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
-        if (!h.hit) h.normal = vec3(0.0f);
-        return h;
-    }
+    rk_svo_trace_state_ s;
+    if (!rk_svo_trace_begin_(buf, tree, origin, dir, t_max, cone, h, s)) return h;
 
     uint stk_node[RK_SVO_TRAVERSE_STACK];
     float stk_tmax[RK_SVO_TRAVERSE_STACK];
 
-    // The current cell: a child of the parent, `scale` = 23 - its level, size 2^(scale - 23),
-    // minimum corner `pos` (mirrored), child slot `idx` (mirrored; the format's index is idx ^ flip).
-    int scale = 22;
-    float size = 0.5f;
-    vec3 pos = vec3(1.0f);
-    uint idx = 0u;
-    if (1.5f * coef.x - bias.x > t_min) { idx |= 1u; pos.x = 1.5f; }
-    if (1.5f * coef.y - bias.y > t_min) { idx |= 2u; pos.y = 1.5f; }
-    if (1.5f * coef.z - bias.z > t_min) { idx |= 4u; pos.z = 1.5f; }
-
     uint iter = 0u;
     bool found = false;
     for (; iter < uint(RK_SVO_TRAVERSE_MAX_ITER); ++iter) {
-        uint lc = uint(23 - scale);  // level of the current cell
-        vec3 tc = pos * coef - bias;  // exit planes of the current cell
+        uint lc = uint(23 - s.scale);  // level of the current cell
+        vec3 tc = s.pos * s.coef - s.bias;  // exit planes of the current cell
         float tc_max = min(min(tc.x, tc.y), tc.z);
-        uint c = idx ^ flip;
-        if (((pmask >> c) & 1u) != 0u && t_min <= t_hi) {
-            float tv_max = min(t_hi, tc_max);
-            if (t_min <= tv_max) {
-                bool stop = lc >= leaf;
+        uint c = s.idx ^ s.flip;
+        if (((s.pmask >> c) & 1u) != 0u && s.t_min <= s.t_hi) {
+            float tv_max = min(s.t_hi, tc_max);
+            if (s.t_min <= tv_max) {
+                bool stop = lc >= s.leaf;
 #if RK_SVO_TRAVERSE_LOD
-                stop = stop || size <= lod_bias + lod_slope * (t_enter + t_min);
+                stop = stop || s.size <= s.lod_bias + s.lod_slope * (s.t_enter + s.t_min);
 #endif
                 if (stop) {
                     found = true;
@@ -271,89 +350,65 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
                 }
                 // Push: the child becomes the parent.
                 uint lp = lc - 1u;
-                stk_node[lp] = handle;
-                stk_tmax[lp] = t_hi;
-                if (lp < top) {
-                    uint far_word = rk_svo_is_far(pdesc) ? RK_SVO_READ(buf, handle + rk_svo_rel_ptr(pdesc)) : 0u;
-                    handle = rk_svo_first_child(handle, pdesc, far_word) + rk_svo_child_rank(pmask, c);
-                    if (lc < top) {
-                        pdesc = RK_SVO_READ(buf, handle);
+                stk_node[lp] = s.handle;
+                stk_tmax[lp] = s.t_hi;
+                if (lp < s.top) {
+                    uint far_word = rk_svo_is_far(s.pdesc) ? RK_SVO_READ(buf, s.handle + rk_svo_rel_ptr(s.pdesc)) : 0u;
+                    s.handle = rk_svo_first_child(s.handle, s.pdesc, far_word) + rk_svo_child_rank(s.pmask, c);
+                    if (lc < s.top) {
+                        s.pdesc = RK_SVO_READ(buf, s.handle);
                     } else {
-                        uint w = rk_svo_word_of(handle, tree.desc_words);
-                        bmask = uvec2(RK_SVO_READ(buf, w), RK_SVO_READ(buf, w + 1u));
-                        bsub = b == 2u ? rk_svo_brick_submask(bmask) : (bmask.x & 0xFFu);
-                        brick = handle;
+                        uint w = rk_svo_word_of(s.handle, tree.desc_words);
+                        s.bmask = uvec2(RK_SVO_READ(buf, w), RK_SVO_READ(buf, w + 1u));
+                        s.bsub = s.b == 2u ? rk_svo_brick_submask(s.bmask) : (s.bmask.x & 0xFFu);
+                        s.brick = s.handle;
                     }
                 } else {
-                    handle = c;  // a level-(depth-1) node inside the brick
+                    s.handle = c;  // a level-(depth-1) node inside the brick
                 }
-                pmask = rk_svo_trace_child_mask_(lc, top, pdesc, bmask, bsub, handle);
-                scale -= 1;
-                size *= 0.5f;
-                idx = 0u;
-                vec3 tmid = size * coef + tc;  // the child's centre planes
-                if (tmid.x > t_min) { idx |= 1u; pos.x += size; }
-                if (tmid.y > t_min) { idx |= 2u; pos.y += size; }
-                if (tmid.z > t_min) { idx |= 4u; pos.z += size; }
-                t_hi = tv_max;
+                s.pmask = rk_svo_trace_child_mask_(lc, s.top, s.pdesc, s.bmask, s.bsub, s.handle);
+                s.scale -= 1;
+                s.size *= 0.5f;
+                s.idx = 0u;
+                vec3 tmid = s.size * s.coef + tc;  // the child's centre planes
+                if (tmid.x > s.t_min) { s.idx |= 1u; s.pos.x += s.size; }
+                if (tmid.y > s.t_min) { s.idx |= 2u; s.pos.y += s.size; }
+                if (tmid.z > s.t_min) { s.idx |= 4u; s.pos.z += s.size; }
+                s.t_hi = tv_max;
                 continue;
             }
         }
         // Advance to the next cell along the ray; every axis whose exit plane ties steps.
         uint stp = 0u;
-        if (tc.x <= tc_max) { stp |= 1u; pos.x -= size; }
-        if (tc.y <= tc_max) { stp |= 2u; pos.y -= size; }
-        if (tc.z <= tc_max) { stp |= 4u; pos.z -= size; }
+        if (tc.x <= tc_max) { stp |= 1u; s.pos.x -= s.size; }
+        if (tc.y <= tc_max) { stp |= 2u; s.pos.y -= s.size; }
+        if (tc.z <= tc_max) { stp |= 4u; s.pos.z -= s.size; }
         // Never backwards: for an axis almost parallel to the ray, plane distances carry rounding
         // of ~2^-22 / |dir| (a position error of ~2^-22), which can put tc_max below t_min.
-        t_min = max(t_min, tc_max);
-        idx ^= stp;
-        if ((idx & stp) != 0u) {
+        s.t_min = max(s.t_min, tc_max);
+        s.idx ^= stp;
+        if ((s.idx & stp) != 0u) {
             // Left the parent: pop to the level of the highest differing address bit.
             uint diff = 0u;
-            if ((stp & 1u) != 0u) diff |= floatBitsToUint(pos.x) ^ floatBitsToUint(pos.x + size);
-            if ((stp & 2u) != 0u) diff |= floatBitsToUint(pos.y) ^ floatBitsToUint(pos.y + size);
-            if ((stp & 4u) != 0u) diff |= floatBitsToUint(pos.z) ^ floatBitsToUint(pos.z + size);
-            scale = findMSB(diff);
-            if (scale >= 23 || scale < 23 - int(leaf)) break;  // left the root
-            size = uintBitsToFloat(uint(scale + 104) << 23u);  // 2^(scale - 23)
-            uint lp = uint(22 - scale);
-            handle = stk_node[lp];
-            t_hi = stk_tmax[lp];
-            if (lp < top) pdesc = RK_SVO_READ(buf, handle);
-            pmask = rk_svo_trace_child_mask_(lp, top, pdesc, bmask, bsub, handle);
-            uint sx = floatBitsToUint(pos.x) >> uint(scale);
-            uint sy = floatBitsToUint(pos.y) >> uint(scale);
-            uint sz = floatBitsToUint(pos.z) >> uint(scale);
-            pos = vec3(uintBitsToFloat(sx << uint(scale)), uintBitsToFloat(sy << uint(scale)), uintBitsToFloat(sz << uint(scale)));
-            idx = (sx & 1u) | ((sz & 1u) << 2u) | ((sy & 1u) << 1u);
+            if ((stp & 1u) != 0u) diff |= floatBitsToUint(s.pos.x) ^ floatBitsToUint(s.pos.x + s.size);
+            if ((stp & 2u) != 0u) diff |= floatBitsToUint(s.pos.y) ^ floatBitsToUint(s.pos.y + s.size);
+            if ((stp & 4u) != 0u) diff |= floatBitsToUint(s.pos.z) ^ floatBitsToUint(s.pos.z + s.size);
+            s.scale = findMSB(diff);
+            if (s.scale >= 23 || s.scale < 23 - int(s.leaf)) break;  // left the root
+            s.size = uintBitsToFloat(uint(s.scale + 104) << 23u);  // 2^(scale - 23)
+            uint lp = uint(22 - s.scale);
+            s.handle = stk_node[lp];
+            s.t_hi = stk_tmax[lp];
+            if (lp < s.top) s.pdesc = RK_SVO_READ(buf, s.handle);
+            s.pmask = rk_svo_trace_child_mask_(lp, s.top, s.pdesc, s.bmask, s.bsub, s.handle);
+            uint sx = floatBitsToUint(s.pos.x) >> uint(s.scale);
+            uint sy = floatBitsToUint(s.pos.y) >> uint(s.scale);
+            uint sz = floatBitsToUint(s.pos.z) >> uint(s.scale);
+            s.pos = vec3(uintBitsToFloat(sx << uint(s.scale)), uintBitsToFloat(sy << uint(s.scale)), uintBitsToFloat(sz << uint(s.scale)));
+            s.idx = (sx & 1u) | ((sz & 1u) << 2u) | ((sy & 1u) << 1u);
         }
     }
-    h.iterations = iter;
-    if (!found) return h;
-
-    // The hit: un-mirror the cell, find the entry face, locate the attributes.
-    uint lvl = uint(23 - scale);
-    uint c = idx ^ flip;
-    float px = (flip & 1u) != 0u ? 3.0f - size - pos.x : pos.x;
-    float py = (flip & 2u) != 0u ? 3.0f - size - pos.y : pos.y;
-    float pz = (flip & 4u) != 0u ? 3.0f - size - pos.z : pos.z;
-    uint sh = uint(scale);
-    h.cell = uvec3((floatBitsToUint(px) & 0x7FFFFFu) >> sh, (floatBitsToUint(py) & 0x7FFFFFu) >> sh,
-                   (floatBitsToUint(pz) & 0x7FFFFFu) >> sh);
-    h.normal = rk_svo_trace_entry_normal_((pos + vec3(size)) * coef - bias, u);  // entry planes of the cell
-    h.hit = true;
-    h.level = lvl;
-    h.t = min((t_enter + t_min) * t_scale, RK_FLT_MAX);
-    uint lp = lvl - 1u;
-    if (lp < top) {
-        uint far_word = rk_svo_is_far(pdesc) ? RK_SVO_READ(buf, handle + rk_svo_rel_ptr(pdesc)) : 0u;
-        h.node = rk_svo_first_child(handle, pdesc, far_word) + rk_svo_child_rank(pmask, c);
-    } else {
-        h.node = brick;
-        h.brick_mask = bmask;
-        h.brick_bit = lvl == tree.depth && b == 2u ? (c | (handle << 3u)) : c;
-    }
+    rk_svo_trace_finish_(buf, tree, s, found, iter, h);
     return h;
 }
 
