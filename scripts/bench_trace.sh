@@ -19,7 +19,7 @@ bash scripts/setup.sh libembree-dev libopenvdb-dev libboost-iostreams-dev
 
 build="${RAYKIT_BENCH_BUILD_DIR:-build}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON -DRAYKIT_BUILD_BENCH_TRACE=ON
-cmake --build "$build" --target raykit_bench_trace -j2
+cmake --build "$build" --target raykit_bench_trace raykit_svo_simd_ab -j2
 
 exe="$build/bench/trace/raykit_bench_trace"
 rows="$("$exe" --benchmark_list_tests)"
@@ -28,4 +28,6 @@ for peer in embree openvdb; do
 done
 
 "$exe" --benchmark_out_format=json --benchmark_out="$build/bench_trace.json" "$@"
+# svo_trace_rays against rk_svo_trace, paired in one process (the ratio the docs quote).
+"$build/bench/trace/raykit_svo_simd_ab"
 echo "bench_trace: results in $build/bench_trace.json (load average after the run: $(cut -d' ' -f1-3 /proc/loadavg))"

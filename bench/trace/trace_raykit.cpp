@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "raykit/svo_build.hpp"
+#include "raykit/svo_trace_simd.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "trace_harness.hpp"
 
@@ -17,7 +18,7 @@ struct Tree {
     raykit::rk_svo_tree uniforms;
 };
 
-Prepared prepare(const Scene& s, int depth)
+Prepared prepare(const Scene& s, int depth, bool simd)
 {
     Prepared p;
     auto t = std::make_shared<Tree>();
@@ -39,12 +40,35 @@ Prepared prepare(const Scene& s, int depth)
     p.counters.push_back({"bytes_per_voxel", double(t->tree.structure_bytes()) / double(t->tree.voxel_count)});
     p.keep = t;
     const Tree* tp = t.get();
-    p.make_thread = [tp] {
-        return per_ray([tp](const Ray& r) {
-            const raykit::rk_svo_trace_hit h =
-                raykit::rk_svo_trace(tp->words.data(), tp->uniforms, r.org, r.dir, RK_FLT_MAX, glm::vec2(0.0f));
-            return h.hit ? h.t : kMiss;
-        });
+    if (!simd) {
+        p.make_thread = [tp] {
+            return per_ray([tp](const Ray& r) {
+                const raykit::rk_svo_trace_hit h =
+                    raykit::rk_svo_trace(tp->words.data(), tp->uniforms, r.org, r.dir, RK_FLT_MAX, glm::vec2(0.0f));
+                return h.hit ? h.t : kMiss;
+            });
+        };
+        return p;
+    }
+    if (!raykit::svo_trace_simd_available()) {
+        p.skip = "this CPU has no AVX2: svo_trace_rays would be the per-ray rows again";
+        return p;
+    }
+    // svo_trace_rays over each chunk of rows: the rays copied into its input and the hits out of its
+    // output inside the timed loop (what a caller with its own ray layout pays).
+    p.make_thread = [tp]() -> SpanTracer {
+        auto in = std::make_shared<std::vector<raykit::SvoRay>>();
+        auto out = std::make_shared<std::vector<raykit::rk_svo_trace_hit>>();
+        return [tp, in, out](const Ray* rays, std::size_t n, float* t_out) {
+            in->resize(n);
+            out->resize(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                (*in)[i].origin = rays[i].org;
+                (*in)[i].dir = rays[i].dir;
+            }
+            raykit::svo_trace_rays(tp->words.data(), tp->uniforms, in->data(), n, out->data());
+            for (std::size_t i = 0; i < n; ++i) t_out[i] = (*out)[i].hit ? (*out)[i].t : kMiss;
+        };
     };
     return p;
 }
@@ -56,7 +80,13 @@ Prepared prepare(const Scene& s, int depth)
 // hits, though: fewer than the reference's minus 3% fails the row, so a traversal that misses
 // surfaces cannot pass the smoke test.
 const TracerRegistrar reg(TracerSpec{"raykit", "raykit rk_svo_trace (C++ build of svo_traverse.glsl), geometry only", 30, true,
-                                     {8, 9, 10, 11, 12}, false, prepare, 50.0, 2.0, -3.0});
+                                     {8, 9, 10, 11, 12}, false,
+                                     [](const Scene& s, int depth) { return prepare(s, depth, false); }, 50.0, 2.0, -3.0});
+// The same rays through svo_trace_rays (raykit/svo_trace_simd.hpp): the loop on 8 AVX2 lanes, the
+// answers bit for bit rk_svo_trace's (test_svo_trace_simd).
+const TracerRegistrar reg_simd(TracerSpec{"raykit_simd", "raykit svo_trace_rays (rk_svo_trace's loop on 8 AVX2 lanes), geometry only",
+                                          31, true, {8, 9, 10, 11, 12}, false,
+                                          [](const Scene& s, int depth) { return prepare(s, depth, true); }, 50.0, 2.0, -3.0});
 
 }  // namespace
 }  // namespace rktrace
