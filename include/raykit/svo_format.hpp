@@ -76,12 +76,18 @@ struct SvoTree {
 };
 
 /// svo_texture_extent: width and height of the R32UI 2D texture holding `words` words
-/// (RK_SVO_BUFFER_TEXTURE=1 in svo_format.glsl): `width` (default RK_SVO_TEXTURE_WIDTH, which the
-/// shader must agree with) by ceil(words / width); pad the words with zeros to width * height.
-inline glm::uvec2 svo_texture_extent(size_t words, uint32_t width = RK_SVO_TEXTURE_WIDTH)
+/// (RK_SVO_BUFFER_TEXTURE=1 in svo_format.glsl): `width` (without it, this translation unit's
+/// RK_SVO_TEXTURE_WIDTH, which the shader must agree with) by ceil(words / width); pad the words
+/// with zeros to width * height.
+inline glm::uvec2 svo_texture_extent(size_t words, uint32_t width)
 {
     return glm::uvec2(width, static_cast<uint32_t>((words + width - 1) / width));
 }
+// The one-argument form reads the macro, so it lives in a namespace named after its value (as
+// RK_CONFIGURED_BEGIN does for the shared functions).
+RK_CONFIGURED_BEGIN(RK_PP_CAT(svo_texture_width, RK_SVO_TEXTURE_WIDTH))
+inline glm::uvec2 svo_texture_extent(size_t words) { return raykit::svo_texture_extent(words, RK_SVO_TEXTURE_WIDTH); }
+RK_CONFIGURED_END
 
 /// svo_for_each_voxel: calls f(cell, attr) for every occupied voxel of a valid tree, in Morton
 /// (breadth-first then brick-bit) order: cell = integer coordinates at tree.depth, attr = the
