@@ -27,12 +27,7 @@ int main(int argc, char** argv)
     if (!raykit::svo_trace_simd_available()) std::printf("note: no AVX2 here, both modes are the per-ray loop\n");
     for (rktrace::Scene& s : rktrace::make_scenes(512)) {
         if (s.key != "figure" && s.key != "uv_sphere_5856" && s.key != "torus_69120") continue;
-        raykit::SvoBuildOptions opt;
-        opt.depth = depth;
-        opt.attributes = 0;
-        opt.fixed_bounds = true;
-        opt.bounds_min = s.cube.min;
-        opt.bounds_size = s.cube.size;
+        const raykit::SvoBuildOptions opt = rktrace::svo_options(s, depth);
         raykit::SvoTree t;
         raykit::SvoStatus st;
         if (!raykit::build_svo(s.mesh.view(), opt, t, st)) {

@@ -22,12 +22,7 @@ Prepared prepare(const Scene& s, int depth, bool simd)
 {
     Prepared p;
     auto t = std::make_shared<Tree>();
-    raykit::SvoBuildOptions opt;
-    opt.depth = depth;
-    opt.attributes = 0;
-    opt.fixed_bounds = true;
-    opt.bounds_min = s.cube.min;
-    opt.bounds_size = s.cube.size;
+    const raykit::SvoBuildOptions opt = svo_options(s, depth);
     raykit::SvoStatus st;
     const auto t0 = std::chrono::steady_clock::now();
     if (!raykit::build_svo(s.mesh.view(), opt, t->tree, st)) {

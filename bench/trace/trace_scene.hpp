@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raykit/svo_build.hpp"
 #include "raykit/svo_mesh.hpp"
 #include "reference/svo_meshes.hpp"
 
@@ -161,6 +162,19 @@ struct Scene {
     /// with much surface per cube volume make level sets of gigabytes and minutes sooner.
     int default_max_depth = 10;
 };
+
+/// The octree build of a scene for raykit's tracers: geometry only (no attribute stream), at `depth`
+/// in the scene's shared root cube, so that depth D means the same voxels as OpenVDB's rows.
+inline raykit::SvoBuildOptions svo_options(const Scene& s, int depth)
+{
+    raykit::SvoBuildOptions opt;
+    opt.depth = depth;
+    opt.attributes = 0;
+    opt.fixed_bounds = true;
+    opt.bounds_min = s.cube.min;
+    opt.bounds_size = s.cube.size;
+    return opt;
+}
 
 inline Scene make_scene(std::string key, std::string title, raykit::SvoMeshData mesh, int image_size, int default_max_depth = 10)
 {
