@@ -162,7 +162,7 @@ RK_SVO_RAYS_TARGET inline __m256i gather(const uint32_t* base, __m256i index, __
 RK_SVO_RAYS_TARGET inline __m256i gather_rare(const uint32_t* base, __m256i index, __m256i mask, __m256i src)
 {
     if (_mm256_testz_si256(mask, mask)) return src;
-    return _mm256_mask_i32gather_epi32(src, reinterpret_cast<const int*>(base), index, mask, 4);
+    return gather(base, index, mask, src);
 }
 
 RK_SVO_RAYS_TARGET inline __m256 cle(__m256 a, __m256 b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
@@ -423,9 +423,9 @@ RK_SVO_RAYS_TARGET inline void trace_lanes(const uint32_t* words, const rk_svo_t
 /// svo_trace_rays: hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max,
 /// cone) for i < n, bit for bit (see the file comment), the traversal loops of 8 rays at a time on
 /// SIMD lanes where the CPU has AVX2 (mode `best`). `words` is the tree as SvoTree::gpu_words();
-/// trees of 2^31 words or more take the per-ray path. Coherent rays (a camera's, a light's) gain
-/// most; docs/benchmarks_trace.md measures it. Cost: the set-up and hit of each ray as
-/// rk_svo_trace; per loop iteration of 8 lanes ~150 AVX2 instructions and up to 7 gathers.
+/// trees of 2^31 words or more take the per-ray path. Cost: the set-up and hit of each ray as
+/// rk_svo_trace; per loop iteration of 8 lanes ~250 AVX2 instructions (spills included) and up to
+/// 7 gathers: 1.0-1.5x the per-ray speed on 512^2 primary rays at depth 10 (docs/svo-traverse.md).
 inline void svo_trace_rays(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n,
                            rk_svo_trace_hit* hits, glm::vec2 cone = glm::vec2(0.0f), SvoTraceMode mode = SvoTraceMode::best)
 {
