@@ -198,7 +198,8 @@ RK_SVO_RAYS_TARGET inline __m256i child_mask(__m256i lp, __m256i top, __m256i pd
     return sel(_mm256_cmpgt_epi32(top, lp), _mm256_and_si256(pdesc, ff), r);
 }
 
-// What the lanes of one call share: the tree, the rays, and the constants of the loop.
+// What the lanes of one call share: the tree, the rays, and the loop's constants (computed once per
+// call, as rk_svo_trace_begin_ computes them per ray).
 struct Batch {
     const uint32_t* words;
     rk_svo_tree tree;
@@ -207,7 +208,11 @@ struct Batch {
     std::size_t next;
     glm::vec2 cone;
     rk_svo_trace_hit* hits;
-    uint32_t b;
+    bool sub_masks;  // brick levels b == 2: a brick's sub-node mask is its non-zero bytes
+    __m256i top, leaf, desc_words;
+#if RK_SVO_TRAVERSE_LOD
+    __m256 lod_bias, lod_slope;
+#endif
 };
 
 // A group of 8 lanes: their loop state, each lane's full rk_svo_trace_state_ (the set-up's fields
@@ -243,18 +248,10 @@ inline void refill(Batch& c, Group& g, int i)
 // One loop iteration of the 8 lanes of g; lanes that finish are answered and refilled.
 RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
 {
-    const uint32_t b = k.b;
-    const __m256i top = _mm256_set1_epi32(static_cast<int>(k.tree.depth - b));
-    const __m256i leaf = _mm256_set1_epi32(static_cast<int>(k.tree.max_level < k.tree.depth ? k.tree.max_level : k.tree.depth));
-    const __m256i desc_words = _mm256_set1_epi32(static_cast<int>(k.tree.desc_words));
+    const __m256i top = k.top, leaf = k.leaf, desc_words = k.desc_words;
     const __m256i one = _mm256_set1_epi32(1), two = _mm256_set1_epi32(2), four = _mm256_set1_epi32(4);
     const __m256i lane_id = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 half = _mm256_set1_ps(0.5f);
-#if RK_SVO_TRAVERSE_LOD
-    // As rk_svo_trace_begin_ computes them (the same for every ray of one call).
-    const __m256 lod_bias = _mm256_set1_ps(glm::max(k.cone.x, 0.0f) * (1.0f / k.tree.root_size));
-    const __m256 lod_slope = _mm256_set1_ps(glm::max(k.cone.y, 0.0f));
-#endif
     const __m256i act = ne0(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(g.active)), _mm256_sllv_epi32(one, lane_id)));
     const __m256 px = _mm256_load_ps(g.L.px), py = _mm256_load_ps(g.L.py), pz = _mm256_load_ps(g.L.pz);
     const __m256 cx = _mm256_load_ps(g.L.cx), cy = _mm256_load_ps(g.L.cy), cz = _mm256_load_ps(g.L.cz);
@@ -283,7 +280,7 @@ RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
     const __m256i enter = _mm256_and_si256(_mm256_and_si256(in_parent, cmask(cle(t_min, tv_max))), act);
     __m256i stop = _mm256_or_si256(_mm256_cmpgt_epi32(lc, leaf), _mm256_cmpeq_epi32(lc, leaf));
 #if RK_SVO_TRAVERSE_LOD
-    const __m256 foot = _mm256_add_ps(lod_bias, _mm256_mul_ps(lod_slope, _mm256_add_ps(_mm256_load_ps(g.L.t_enter), t_min)));
+    const __m256 foot = _mm256_add_ps(k.lod_bias, _mm256_mul_ps(k.lod_slope, _mm256_add_ps(_mm256_load_ps(g.L.t_enter), t_min)));
     stop = _mm256_or_si256(stop, cmask(cle(size, foot)));
 #endif
     const __m256i found = _mm256_and_si256(enter, stop);
@@ -315,7 +312,7 @@ RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
     const __m256i bw = sel(_mm256_cmpgt_epi32(desc_words, nh), nh, _mm256_sub_epi32(_mm256_slli_epi32(nh, 1), desc_words));
     const __m256i bmx_push = gather_rare(k.words, bw, to_brick, bmx);
     const __m256i bmy_push = gather_rare(k.words, _mm256_add_epi32(bw, one), to_brick, bmy);
-    const __m256i bsub_brick = b == 2u ? _mm256_or_si256(nonzero_bytes(bmx_push), _mm256_slli_epi32(nonzero_bytes(bmy_push), 4))
+    const __m256i bsub_brick = k.sub_masks ? _mm256_or_si256(nonzero_bytes(bmx_push), _mm256_slli_epi32(nonzero_bytes(bmy_push), 4))
                                        : _mm256_and_si256(bmx_push, _mm256_set1_epi32(0xFF));
     const __m256i bsub_push = sel(to_brick, bsub_brick, bsub);
     const __m256i brick_push = sel(to_brick, nh, brick);
@@ -411,7 +408,23 @@ RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
 RK_SVO_RAYS_TARGET inline void trace_lanes(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n,
                                            glm::vec2 cone, rk_svo_trace_hit* hits)
 {
-    Batch c{words, tree, rays, n, 0, cone, hits, rk_svo_brick_levels(tree.depth)};
+    Batch c;
+    c.words = words;
+    c.tree = tree;
+    c.rays = rays;
+    c.n = n;
+    c.next = 0;
+    c.cone = cone;
+    c.hits = hits;
+    const uint32_t b = rk_svo_brick_levels(tree.depth);
+    c.sub_masks = b == 2u;
+    c.top = _mm256_set1_epi32(static_cast<int>(tree.depth - b));
+    c.leaf = _mm256_set1_epi32(static_cast<int>(tree.max_level < tree.depth ? tree.max_level : tree.depth));
+    c.desc_words = _mm256_set1_epi32(static_cast<int>(tree.desc_words));
+#if RK_SVO_TRAVERSE_LOD
+    c.lod_bias = _mm256_set1_ps(glm::max(cone.x, 0.0f) * (1.0f / tree.root_size));
+    c.lod_slope = _mm256_set1_ps(glm::max(cone.y, 0.0f));
+#endif
     Group g;
     for (int i = 0; i < kLanes; ++i) refill(c, g, i);
     while (g.active != 0u) step(c, g);
