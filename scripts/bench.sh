@@ -2,14 +2,18 @@
 # Builds and runs raykit's CPU benchmarks (every bench/bench_*.cpp, one executable), then
 # regenerates docs/benchmarks.md and docs/img/bench_<suite>_speed_error.png (bench_fresnel_...,
 # bench_tonemap_..., bench_svo_build) from the results (scripts/bench_report.py).
-# Usage: bash scripts/bench.sh        (from anywhere; takes about 7 minutes)
+# Usage: bash scripts/bench.sh        (from anywhere; about 20 minutes on 2 cores: the octree build
+#                                     rows take 9, each further process about 1.5)
 # Extra arguments are passed to raykit_bench, e.g. --benchmark_filter=schlick (the report then
 # only holds what ran).
 #
-# The per-call suites run in RAYKIT_BENCH_PROCESSES (default 5) separate processes, one repetition
+# The per-call suites run in RAYKIT_BENCH_PROCESSES (default 9) separate processes, one repetition
 # each, so the spread the report quotes (the range of the per-process values) includes what changes
 # from one process to the next (where the heap and the stack land, what else the machine runs), not
-# only the noise inside one process. The octree build rows run in the first process only.
+# only the noise inside one process. Nine, because a rerun's median then falls inside that range
+# with probability 97 %, for any distribution of the values (scripts/rerun_stats.py; with 5 it is
+# 83 %, and two runs agree both ways on only 71 % of the rows by chance alone). Use an odd count:
+# the probability is then exact. The octree build rows run in the first process only.
 # The previous run's merged JSON is kept as build/bench.prev.json; when it came from the same
 # binary (same SHA-256), the report says how many rows of each run fall inside the other's range.
 set -euo pipefail
@@ -20,7 +24,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON
 cmake --build build --target raykit_bench -j2
 
-processes="${RAYKIT_BENCH_PROCESSES:-5}"
+processes="${RAYKIT_BENCH_PROCESSES:-9}"
 if [ -f build/bench.json ]; then mv build/bench.json build/bench.prev.json; fi
 rm -f build/bench.p?.json
 

@@ -47,7 +47,7 @@ step svo_gl "$BUILD/bench/bench_svo_gl" --rounds "${RAYKIT_GPU_SVO_ROUNDS:-25}" 
   --png "$OUT/svo_gl/lod.png" > "$OUT/svo_gl/log.txt" 2>&1
 head -1 "$OUT/svo_gl/log.txt" | tee -a "$OUT/machine.txt"
 
-step interior "$BUILD/bench/bench_interior_gl" --width 1024 --height 768 --rounds 48 --poses 8 --warmup 2 \
+step interior "$BUILD/bench/bench_interior_gl" --width 1024 --height 768 --rounds 72 --poses 8 --warmup 2 \
   --json "$OUT/interior/results.json" --csv "$OUT/interior/results.csv" --md "$OUT/interior/table.md" \
   --png "$OUT/interior/materials.png" > "$OUT/interior/console.txt" 2>&1
 
