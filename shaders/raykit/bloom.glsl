@@ -143,9 +143,12 @@ RK_INLINE float rk_bloom_weight_subtract(float lum, float threshold, float knee)
     if (y <= lo) {
         return 0.0f;
     }
-    // y > lo >= 0 and y is sanitised, so y >= RK_FLT_MIN: the division is safe.
-    float q = rk_sqr(min(y - lo, 2.0f * k)) / max(4.0f * k, RK_FLT_MIN);
-    return min(max(q, y - t) / max(y, RK_FLT_MIN), 1.0f);
+    // y > lo >= 0 and y is sanitised, so y >= RK_FLT_MIN: the divisions are safe. q / y is taken
+    // as (m / y)(m / 4K), two ratios in [0, 1], rather than m^2 / 4K / y: for tiny T and K, m^2 and
+    // q are denormal, and zero on drivers that flush denormals.
+    float m = min(y - lo, 2.0f * k);
+    float q_y = (m / max(y, RK_FLT_MIN)) * (m / max(4.0f * k, RK_FLT_MIN));
+    return min(max(q_y, (y - t) / max(y, RK_FLT_MIN)), 1.0f);
 }
 
 /// rk_bloom_weight: the bright-pass weight of `mode` (RK_BLOOM_MODE_*; unknown modes act as

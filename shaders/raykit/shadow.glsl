@@ -92,12 +92,16 @@ RK_INLINE vec2 rk_sh_rotate(vec2 o, float phi)
 /// w_penumbra = (d_receiver - d_blocker) · w_light / d_blocker, with distances from the light
 /// (d_blocker the average blocker distance of the search, > 0) and w_light the light's width, all
 /// in the same units. 0 when the receiver is not behind the blocker. Exact for a planar blocker
-/// parallel to the receiver and the light. Cost: 1 div, 2 flops.
+/// parallel to the receiver and the light. The ratio gap / d_blocker is taken first, so tiny
+/// distances do not underflow (or flush to zero on a driver that flushes denormals). Cost: 1 div,
+/// 3 flops.
 RK_INLINE float rk_sh_pcss_penumbra(float d_receiver, float d_blocker, float w_light)
 {
     float db = max(d_blocker, RK_FLT_MIN);
     float gap = min(max(d_receiver - d_blocker, 0.0f), RK_FLT_MAX);  // an overflowing difference held finite
-    return clamp(gap * max(w_light, 0.0f) / db, 0.0f, RK_FLT_MAX);
+    // The ratio held finite too (it reaches 2^254 for gap FLT_MAX over FLT_MIN), so a zero width
+    // gives 0, never Inf * 0.
+    return clamp(min(gap / db, RK_FLT_MAX) * max(w_light, 0.0f), 0.0f, RK_FLT_MAX);
 }
 
 /// rk_sh_cascade_index: the cascade of a point at view distance `dist` (along the view axis), with

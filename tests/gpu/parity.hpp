@@ -17,11 +17,21 @@
 // zero by the shader, so the rows are given to both builds with their denormal inputs flushed:
 // the comparison stays like with like, and the denormal classes are exercised where the driver keeps
 // them (llvmpipe, CI). Cases whose inputs are bit patterns (floatBitsToUint) keep them as they are.
+// Likewise a CPU output that is denormal is compared as the signed zero such a driver stores.
+//
+// A flushing driver also flushes *intermediate* results, which flushing the inputs does not model.
+// RAYKIT_PARITY_EMULATE=ftz (x86-64 only; ctest gpu.parity_ftz) stands a CPU model of such a driver
+// in for the GL one in run() and run_adversarial(): the "gpu" column is the C++ build run with the
+// SSE control register's flush-to-zero and denormals-are-zero bits set, so every denormal operand
+// and result of the case's arithmetic becomes a signed zero, as on NVIDIA's driver. The comparison,
+// tolerances and tie rules are those of the real driver; divisions stay correctly rounded (a
+// hardware driver's 2.5-ulp division and its reassociation are not modelled).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -32,6 +42,13 @@
 #include "adversarial.hpp"
 #include "rk_gl.hpp"
 #include "test_util.hpp"
+
+#if defined(__x86_64__) || defined(_M_X64)
+#include <xmmintrin.h>
+#define RK_PARITY_CAN_EMULATE_FTZ 1
+#else
+#define RK_PARITY_CAN_EMULATE_FTZ 0
+#endif
 
 namespace parity {
 
@@ -142,10 +159,46 @@ struct Result {
 /// The folder holding raykit/*.glsl (compile definition of the test target).
 inline std::string shader_dir() { return RAYKIT_SHADER_DIR; }
 
+/// Whether RAYKIT_PARITY_EMULATE=ftz asks for the CPU model of a flushing driver (top of this file).
+/// Asking for it where it cannot run (not x86-64) aborts the process instead of testing nothing.
+inline bool emulate_ftz()
+{
+    static const bool on = [] {
+        const char* v = std::getenv("RAYKIT_PARITY_EMULATE");
+        const bool want = v != nullptr && std::string(v) == "ftz";
+        if (want && !RK_PARITY_CAN_EMULATE_FTZ) {
+            std::fprintf(stderr, "[parity] RAYKIT_PARITY_EMULATE=ftz needs x86-64 (the SSE FTZ/DAZ bits)\n");
+            std::abort();
+        }
+        if (want) std::printf("[parity] emulating a flushing driver: the C++ build with FTZ and DAZ set\n");
+        return want;
+    }();
+    return on;
+}
+
+/// The case's C++ build over `in` with flush-to-zero and denormals-are-zero set (the control
+/// register is restored afterwards): the "gpu" column of RAYKIT_PARITY_EMULATE=ftz.
+inline std::vector<float> run_cpu_ftz(const Case& c, const std::vector<float>& in)
+{
+    const size_t n_in = c.inputs.size(), n_out = static_cast<size_t>(c.n_out);
+    const size_t rows = in.size() / n_in;
+    std::vector<float> out(rows * n_out, 0.0f);
+#if RK_PARITY_CAN_EMULATE_FTZ
+    const unsigned int saved = _mm_getcsr();
+    _mm_setcsr(saved | 0x8040u);  // FTZ (bit 15) | DAZ (bit 6)
+    for (size_t i = 0; i < rows; ++i) c.cpu(&in[i * n_in], &out[i * n_out]);
+    _mm_setcsr(saved);
+#else
+    (void)c;
+#endif
+    return out;
+}
+
 /// Runs the case's body on the current GL context over `in` (rows of c.inputs.size() floats) and
-/// returns the outputs (rows of c.n_out floats).
+/// returns the outputs (rows of c.n_out floats). Under RAYKIT_PARITY_EMULATE=ftz: run_cpu_ftz.
 inline std::vector<float> run_gpu(const Case& c, const std::string& shader_dir, const std::vector<float>& in)
 {
+    if (emulate_ftz()) return run_cpu_ftz(c, in);
     const size_t rows = in.size() / c.inputs.size();
     const size_t n_out = static_cast<size_t>(c.n_out);
     const std::string src = rkgl::resolved_shader(compute_source(c), c.name + ".comp", shader_dir, {shader_dir}, c.defines);
@@ -180,6 +233,7 @@ inline bool software_renderer()
 /// once per process (the parity tests share one context).
 inline bool driver_flushes_denormals()
 {
+    if (emulate_ftz()) return true;
     static const int flushes = [] {
         const char* src = "#version 450 core\nlayout(local_size_x = 1) in;\n"
                           "layout(std430, binding = 0) readonly buffer I { float v[]; };\n"
@@ -233,9 +287,14 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
     std::vector<float> cpu(n_out);
     int shown = 0;
     std::string mismatch_rows;  // the first three mismatching rows, whole
+    // A flushing driver also stores a denormal result as a signed zero: so is the CPU's (value cases).
+    const bool flush_outputs = c.flush_denormal_inputs && driver_flushes_denormals();
     for (size_t i = 0; i < rows; ++i) {
         std::fill(cpu.begin(), cpu.end(), 0.0f);
         c.cpu(&in[i * n_in], cpu.data());
+        if (flush_outputs)
+            for (float& h : cpu)
+                if (std::fpclassify(h) == FP_SUBNORMAL) h = std::copysign(0.0f, h);
         const long mismatches_before = r.mismatches;
         for (size_t k = 0; k < n_out; ++k) {
             const float g = gpu[i * n_out + k], h = cpu[k];
