@@ -99,12 +99,17 @@ RK_INLINE vec2 rk_lv_circle_ndc_range_(float ca, float cz, float r, float p_aa, 
 /// gives the whole screen. Domain: finite c with |c| < 1e18, r >= 0, near > 0. Conservative: each
 /// bound is pushed out by 3e-5 (1 + |bound|), more than its float rounding (5.1e-6 measured), so
 /// every projected point of the clipped sphere is inside (tests/test_light_volume.cpp, 1,800
-/// spheres against 10^4 projected samples each, three projections). Cost: ~60 flops, 4 sqrt, 6 div.
+/// spheres against 10^4 projected samples each, three projections). Cost: ~65 flops, 4 sqrt, 10 div.
 RK_INLINE vec4 rk_lv_sphere_ndc_rect(vec3 c, float r, vec4 proj, float near)
 {
     float rr = max(r, 0.0f);
     float n = max(near, RK_FLT_MIN);
-    if (dot(c, c) <= rr * rr) return vec4(-1.0f, -1.0f, 1.0f, 1.0f);  // the eye is inside
+    // The eye is inside when |c| <= r, compared in units of c's largest component so that neither
+    // squares overflow nor tiny ones underflow (to zero on drivers that flush denormals).
+    float mc = max(max(abs(c.x), abs(c.y)), abs(c.z));
+    vec3 sc = c / max(mc, RK_FLT_MIN);
+    float q = min(rr / max(mc, RK_FLT_MIN), 4.0f);
+    if (mc <= 0.0f || dot(sc, sc) <= q * q) return vec4(-1.0f, -1.0f, 1.0f, 1.0f);
     vec2 x = rk_lv_circle_ndc_range_(c.x, c.z, rr, proj.x, proj.z, n);
     vec2 y = rk_lv_circle_ndc_range_(c.y, c.z, rr, proj.y, proj.w, n);
     if (!(x.x <= x.y) || !(y.x <= y.y)) return vec4(1.0f, 1.0f, -1.0f, -1.0f);

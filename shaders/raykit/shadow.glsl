@@ -262,15 +262,17 @@ RK_INLINE vec3 rk_sh_cube_face_uv(vec3 v)
 /// (1/n - 1/z) / (1/n - 1/f) = f (z - n) / (z (f - n)). Pass it as the reference of a
 /// samplerCubeShadow lookup in direction v (compare LEQUAL). Domain: 0 < n < f; z below n gives a
 /// negative depth (always lit), beyond f above 1. Edge cases (all finite): n is clamped to
-/// [RK_FLT_MIN, 1e18], f to at least n (1 + 1e-7) and at most 2e18, z to 1e18 (beyond, the limit
+/// [RK_FLT_MIN, 1e18], f to at least max(n (1 + 1e-7), n + RK_FLT_MIN) and at most 2e18, z to 1e18 (beyond, the limit
 /// f / (f - n) to float precision); NaN counts as 0, +-Inf as +-RK_FLT_MAX. Max error: 4.2 ulp for
 /// z >= n (a cancellation-free form; 1e7 random + refinement). Cost: 3 abs, 2 max, 1 div, 3 flops, 4 clamps.
 RK_INLINE float rk_sh_cube_ref_depth(vec3 v, float n, float f)
 {
     float z = min(rk_paraboloid_max_abs(rk_sh_finite3(v)), RK_PARABOLOID_POS_MAX);
     float nn = clamp(rk_sh_finite(n), RK_FLT_MIN, RK_PARABOLOID_POS_MAX);
-    float ff = clamp(rk_sh_finite(f), nn * 1.0000001f, 2.0f * RK_PARABOLOID_POS_MAX);
-    return clamp(ff * (z - nn) / max(z * (ff - nn), RK_FLT_MIN), -RK_FLT_MAX, RK_FLT_MAX);
+    // f - n stays >= RK_FLT_MIN: a denormal difference is zero on drivers that flush denormals.
+    float ff = clamp(rk_sh_finite(f), max(nn * 1.0000001f, nn + RK_FLT_MIN), 2.0f * RK_PARABOLOID_POS_MAX);
+    // The quotient before the product: ff (z - nn) underflows for tiny n and z.
+    return clamp(ff * ((z - nn) / max(z * (ff - nn), RK_FLT_MIN)), -RK_FLT_MAX, RK_FLT_MAX);
 }
 
 /// rk_sh_cube_ref_distance: the compare value of v for a cube map that stores linear distance,

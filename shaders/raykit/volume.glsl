@@ -59,11 +59,12 @@ RK_INLINE float rk_vol_density(sampler3D m, vec3 uvw) { return textureLod(m, uvw
 /// rk_vol_span_slab: the span of a volume of thickness `thickness` centred on the billboard, whose
 /// plane the pixel's ray meets at distance t_bb: (t_bb - T/2, t_bb + T/2), the same depth in front
 /// and behind (the thesis's constant thickness, and its thickness texture with T = T0 · alpha).
-/// Rays fan out from the eye, so the solid is slightly tapered, not a box. T <= 0 (or NaN) is a
-/// miss. Clamped to ±RK_FLT_MAX. Cost: 3 flops.
+/// Rays fan out from the eye, so the solid is slightly tapered, not a box. T < RK_FLT_MIN (or
+/// NaN) is a miss: a denormal thickness reads as 0 on drivers that flush denormals, so it is a miss
+/// everywhere. Clamped to ±RK_FLT_MAX. Cost: 3 flops.
 RK_INLINE vec2 rk_vol_span_slab(float t_bb, float thickness)
 {
-    if (!(thickness > 0.0f)) return RK_RAY_MISS;
+    if (!(thickness >= RK_FLT_MIN)) return RK_RAY_MISS;
     float h = 0.5f * min(thickness, RK_FLT_MAX);
     float t = clamp(t_bb, -RK_FLT_MAX, RK_FLT_MAX);
     return vec2(clamp(t - h, -RK_FLT_MAX, RK_FLT_MAX), clamp(t + h, -RK_FLT_MAX, RK_FLT_MAX));
@@ -163,8 +164,11 @@ RK_INLINE float rk_vol_optical_depth_falloff(vec3 o, vec3 dir, vec3 c, float r, 
     float beta = min(dot(fr, fr), 1.0f);
     float u0 = clamp((a - tc) / rr, -1.0f, 1.0f);
     float u1 = clamp((b - tc) / rr, -1.0f, 1.0f);
-    float unit = (1.0f - beta) * (u1 - u0) - (u1 * u1 * u1 - u0 * u0 * u0) / 3.0f;
-    float tau = min(max(rho0, 0.0f) * rr, RK_FLT_MAX) * max(unit, 0.0f);
+    // The integral is (u1 - u0) r [(1 - beta) - (u1² + u0 u1 + u0²) / 3], and (u1 - u0) r is the
+    // chord b - a: taking it directly keeps a short chord of a huge sphere from going through
+    // quotients that underflow (flushed to zero on some drivers), and the bracket is in [0, 1].
+    float bracket = (1.0f - beta) - (u1 * u1 + u0 * u1 + u0 * u0) / 3.0f;
+    float tau = min(max(rho0, 0.0f) * min(b - a, RK_FLT_MAX), RK_FLT_MAX) * max(bracket, 0.0f);
     return clamp(tau, 0.0f, RK_FLT_MAX);
 }
 
