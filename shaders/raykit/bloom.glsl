@@ -133,7 +133,7 @@ RK_INLINE float rk_bloom_weight_soft_knee(float lum, float threshold, float knee
 /// subtract max(lum - T, 0) / lum (C0, a kink at T).
 /// Domain: all inputs sanitised, K clamped to [0, T] (then f <= lum, so the factor is in [0, 1]).
 /// Max error vs float64: 1.3e-7 absolute over T in [0, 3], K in [0, 1] (4e7 random + refinement).
-/// Cost: 2 div + ~8 flops.
+/// Cost: 3 div + ~8 flops.
 RK_INLINE float rk_bloom_weight_subtract(float lum, float threshold, float knee)
 {
     float y = rk_bloom_sanitize(lum);
