@@ -176,6 +176,9 @@ inline bool emulate_ftz()
     return on;
 }
 
+/// x as a driver that flushes denormals holds it: a denormal becomes the zero of its sign.
+inline float flushed(float x) { return std::fpclassify(x) == FP_SUBNORMAL ? std::copysign(0.0f, x) : x; }
+
 /// The case's C++ build over `in` with flush-to-zero and denormals-are-zero set (the control
 /// register is restored afterwards): the "gpu" column of RAYKIT_PARITY_EMULATE=ftz.
 inline std::vector<float> run_cpu_ftz(const Case& c, const std::vector<float>& in)
@@ -191,8 +194,7 @@ inline std::vector<float> run_cpu_ftz(const Case& c, const std::vector<float>& i
     // GLM's min/max/clamp are compare-and-select, which passes a denormal operand through unchanged
     // (the compare sees it as zero), where a driver's min/max instruction flushes its result: the
     // model's outputs are flushed as such a driver stores them.
-    for (float& v : out)
-        if (std::fpclassify(v) == FP_SUBNORMAL) v = std::copysign(0.0f, v);
+    for (float& v : out) v = flushed(v);
 #else
     (void)c;
 #endif
@@ -270,8 +272,7 @@ inline bool driver_flushes_denormals()
 inline std::vector<float> as_driver_sees(const Case& c, std::vector<float> in)
 {
     if (!c.flush_denormal_inputs || !driver_flushes_denormals()) return in;
-    for (float& x : in)
-        if (std::fpclassify(x) == FP_SUBNORMAL) x = std::copysign(0.0f, x);
+    for (float& x : in) x = flushed(x);
     return in;
 }
 
@@ -298,8 +299,7 @@ inline Result run(const Case& c, const std::string& shader_dir, int random_rows 
         std::fill(cpu.begin(), cpu.end(), 0.0f);
         c.cpu(&in[i * n_in], cpu.data());
         if (flush_outputs)
-            for (float& h : cpu)
-                if (std::fpclassify(h) == FP_SUBNORMAL) h = std::copysign(0.0f, h);
+            for (float& h : cpu) h = flushed(h);
         const long mismatches_before = r.mismatches;
         for (size_t k = 0; k < n_out; ++k) {
             const float g = gpu[i * n_out + k], h = cpu[k];
