@@ -213,10 +213,13 @@ def ratios(a, b):
     return [x / max(y, 1e-9) for x, y in zip(cfg[a][ka], cfg[b][ka])]
 def paired(a, b):
     return median(ratios(a, b))
+def sweep_medians(rat, poses, n_sweeps):
+    # The median of each sweep over the camera poses (one value per sweep).
+    return [median(rat[i * poses:(i + 1) * poses]) for i in range(n_sweeps)] if n_sweeps > 1 else [median(rat)]
 def paired3(a, b):
     # (median over all rounds, min and max of the per-sweep medians): the run-to-run spread.
     rat = ratios(a, b)
-    per = [median(v) for v in sweeps(rat)]
+    per = sweep_medians(rat, P, S)
     return median(rat), min(per), max(per)
 def fmt3(t, pct=False):
     m, lo, hi = t
@@ -284,9 +287,11 @@ if S > 1 and os.path.exists(prev_path):
         pcfg = {c["name"]: c for c in pr["configs"] if ka in c}  # the same clock only
         pP = pr.get("poses", pr["rounds"]) or pr["rounds"]
         pS = max(pr["rounds"] // pP, 1)
+        def pratios(a, b):
+            return [x / max(y, 1e-9) for x, y in zip(pcfg[a][ka], pcfg[b][ka])]
         def pstats(a, b):
-            rat = [x / max(y, 1e-9) for x, y in zip(pcfg[a][ka], pcfg[b][ka])]
-            per = [median(rat[i * pP:(i + 1) * pP]) for i in range(pS)]
+            rat = pratios(a, b)
+            per = sweep_medians(rat, pP, pS)
             return median(rat), min(per), max(per)
         pairs = []
         for m in ["thesis", "rk_min", "rk_min+array", "rk_full"]:
@@ -298,15 +303,14 @@ if S > 1 and os.path.exists(prev_path):
         pairs = [(a, b) for a, b in pairs if a in cfg and b in cfg and a in pcfg and b in pcfg]
         # The check compares the median of the per-sweep medians (for which scripts/rerun_stats.py's
         # probability is exact with an odd sweep count) with the other run's sweep range.
-        def sweep_median(a, b):
-            return median([median(v) for v in sweeps(ratios(a, b))])
-        def psweep_median(a, b):
-            rat = [x / max(y, 1e-9) for x, y in zip(pcfg[a][ka], pcfg[b][ka])]
-            return median([median(rat[i * pP:(i + 1) * pP]) for i in range(pS)])
-        inside_now = sum(1 for a, b in pairs if pstats(a, b)[1] <= sweep_median(a, b) <= pstats(a, b)[2])
-        inside_prev = sum(1 for a, b in pairs if paired3(a, b)[1] <= psweep_median(a, b) <= paired3(a, b)[2])
-        both = sum(1 for a, b in pairs if pstats(a, b)[1] <= sweep_median(a, b) <= pstats(a, b)[2]
-                   and paired3(a, b)[1] <= psweep_median(a, b) <= paired3(a, b)[2])
+        now_in_prev, prev_in_now = [], []
+        for a, b in pairs:
+            _, plo, phi = pstats(a, b)
+            _, lo, hi = paired3(a, b)
+            now_in_prev.append(plo <= median(sweep_medians(ratios(a, b), P, S)) <= phi)
+            prev_in_now.append(lo <= median(sweep_medians(pratios(a, b), pP, pS)) <= hi)
+        inside_now, inside_prev = sum(now_in_prev), sum(prev_in_now)
+        both = sum(x and y for x, y in zip(now_in_prev, prev_in_now))
         worst = max(pairs, key=lambda ab: abs(paired3(*ab)[0] / pstats(*ab)[0] - 1.0)) if pairs else None
         if pairs:
             a, b = worst
