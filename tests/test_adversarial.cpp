@@ -126,7 +126,7 @@
 // rk_paraboloid_hemi_sign, _max_abs,         finite                         {-1, 1}; max |c|; {1, 2^-100} with a
 //   _prescale                                                              normal reciprocal
 // rk_paraboloid_normalize                    finite                         within 3.8 ulp per component (denormal
-//                                                                          components 0), or the fallback
+//                                                                          components in and out 0), or the fallback
 // rk_paraboloid_encode                       finite                         |st| <= 1e30; <= 1 in the hemisphere
 // rk_paraboloid_decode                       finite                         unit within 2 ulp
 // rk_paraboloid_encode_differential          finite                         within ±4e30
@@ -172,7 +172,8 @@
 // sample_octahedral                          finite dirs; x 20              within [min, max]
 // ---- envmap_correction.glsl (11) --------------------------------------------------------------
 // rk_envmap_clamp_pos                        finite                         within ±1e18; identity inside
-// rk_envmap_normalize                        finite                         within 3.8 ulp, or the fallback
+// rk_envmap_normalize                        finite                         within 3.8 ulp (denormal results 0), or
+//                                                                          the fallback
 // rk_envmap_angle                            finite                         [0, pi]
 // rk_envmap_sigmoid, rk_envmap_fahlen_weight finite                         [1.8e-35, 1]
 // rk_reflect_correct_sphere, _plane,         finite                         finite only
@@ -235,8 +236,9 @@ constexpr double kUlp1 = 1.1920928955078125e-7;  // 1 ulp of 1 (2^-23)
 
 /// Normalisation promise shared by rk_paraboloid_normalize and rk_envmap_normalize: the fallback
 /// (bit for bit) when every |component| is below RK_FLT_MIN, else each component within 3.8 ulp of
-/// the float64 v / |v| (ulp of that component, at least of a normal float). `flush`: denormal
-/// components count as zero (rk_paraboloid_normalize).
+/// the float64 v / |v| (ulp of that component, at least of a normal float), or 0 where that
+/// component is below RK_FLT_MIN (to within those 3.8 ulp: both flush such results, as a GPU
+/// would). `flush`: denormal input components count as zero (rk_paraboloid_normalize).
 std::string normalize_error(vec3 v, vec3 fb, vec3 r, bool flush)
 {
     if (max_abs(v) < RK_FLT_MIN) {
@@ -250,6 +252,7 @@ std::string normalize_error(vec3 v, vec3 fb, vec3 r, bool flush)
         const double ref = (double(v[i]) / m) / l;
         const float fe = std::abs(static_cast<float>(ref));
         const double ulp = std::max(double(std::nextafter(fe, RK_FLT_MAX)) - fe, 1.1754943508222875e-38 * kUlp1);
+        if (r[i] == 0.0f && std::abs(ref) < 1.1754943508222875e-38 + 3.8 * ulp) continue;
         if (!(std::abs(double(r[i]) - ref) <= 3.8 * ulp)) return "component " + std::to_string(i) + " " + S(r);
     }
     return "";

@@ -711,6 +711,13 @@ TEST(InteriorMapping, CameraToObjectSpaceAndRoomAt)
     const rk_im_grid g = make_grid(glm::vec3(2.0f, 3.0f, 4.0f), glm::vec3(1.0f, 0.0f, -1.0f));
     EXPECT_EQ(room_at(glm::vec3(2.9f, 3.0f, -1.0f), g), glm::ivec3(0, 1, 0));
     EXPECT_EQ(room_at(glm::vec3(0.9f, -0.1f, -5.5f), g), glm::ivec3(-1, -1, -2));
+    // Within a subnormal grid distance of the origin's planes: the + side (documented; a GPU that
+    // flushes subnormals decides so), just beyond it: the - side.
+    EXPECT_EQ(room_at(glm::vec3(2.9f, -1.17549435e-38f, -1.0f), g), glm::ivec3(0, 0, 0));
+    EXPECT_EQ(room_at(glm::vec3(2.9f, -1e-37f, -1.0f), g), glm::ivec3(0, -1, 0));
+    // rk_im_jitter: clamped to [0, 1], 0 below 2^-64.
+    EXPECT_EQ(rk_im_jitter(glm::vec3(-0.5f, 0.25f, 7.0f)), glm::vec3(0.0f, 0.25f, 1.0f));
+    EXPECT_EQ(rk_im_jitter(glm::vec3(5.4e-20f, 5.43e-20f, 1.17549435e-38f)), glm::vec3(0.0f, 5.43e-20f, 0.0f));
 }
 
 TEST(InteriorMapping, AdversarialInputsNeverProduceNonFinite)
@@ -745,15 +752,15 @@ TEST(InteriorMapping, VectorisedWallOffsetsMatchTheScalarDefinition)
     // (m = floor(q), m - 1 when q < m + offset(m)).
     std::mt19937 rng(23u);
     long n = 0, bad_hash = 0, bad_offset = 0, bad_room = 0;
-    const float jitters[] = {0.0f, 0.25f, 0.5f, 1.0f, 1.5f, -0.5f};
+    const float jitters[] = {0.0f, 0.25f, 0.5f, 1.0f, 1.5f, -0.5f, 1e-20f, 6e-20f};
     for (int i = 0; i < 100000; ++i) {
         const u32 seed = static_cast<u32>(rng());
         const glm::uvec3 x(static_cast<u32>(rng()), static_cast<u32>(rng()), static_cast<u32>(rng()));
         const glm::uvec3 h = rk_im_detail_hash3(x);
         for (int a = 0; a < 3; ++a) bad_hash += h[a] == rk_hash_u32(x[a]) ? 0 : 1;
         const glm::ivec3 k(static_cast<int>(rng() % 2001u) - 1000, static_cast<int>(rng()) , static_cast<int>(rng() % 7u) - 3);
-        const glm::vec3 jit(jitters[rng() % 6u], jitters[rng() % 6u], static_cast<float>(rng() % 1000u) / 999.0f);
-        const glm::vec3 off = rk_im_detail_wall_offset3(glm::vec3(k), rk_im_detail_wall_keys(seed), glm::clamp(jit, glm::vec3(0.0f), glm::vec3(1.0f)));
+        const glm::vec3 jit(jitters[rng() % 8u], jitters[rng() % 8u], static_cast<float>(rng() % 1000u) / 999.0f);
+        const glm::vec3 off = rk_im_detail_wall_offset3(glm::vec3(k), rk_im_detail_wall_keys(seed), rk_im_jitter(jit));
         for (int a = 0; a < 3; ++a) {
             if (std::abs(k[a]) >= (1 << 24)) continue;  // k must be exact as a float
             bad_offset += off[a] == rk_im_wall_offset(a, k[a], jit[a], seed) ? 0 : 1;

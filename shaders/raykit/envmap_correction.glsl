@@ -48,8 +48,9 @@ RK_INLINE vec3 rk_envmap_clamp_pos(vec3 v)
 /// rk_envmap_normalize: v / |v| for any finite v without overflow or underflow (components are
 /// first scaled by the largest |component|, brought below 2.7e8 by the exact factor 2^-100 so that
 /// its reciprocal is a normal float); `fallback` when every |component| is below RK_FLT_MIN.
-/// Max error: 3.8 ulp per component against float64 (4e7 random + refinement).
-/// Cost: 4 max/abs, 1 div, 1 dot, 1 rsqrt.
+/// Result components below RK_FLT_MIN (over 2^126 times smaller than the largest) are 0, as a GPU
+/// that flushes subnormals makes them. Max error: 3.8 ulp per component against float64 (4e7
+/// random + refinement), plus that flush. Cost: 7 max/abs, 3 select, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
 {
     float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
@@ -58,7 +59,9 @@ RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
     }
     float pre = m > 1.0e30f ? 7.8886090522101181e-31f : 1.0f;
     vec3 q = (v * pre) / (m * pre);
-    return q * inversesqrt(dot(q, q));
+    vec3 r = q * inversesqrt(dot(q, q));
+    return vec3(abs(r.x) < RK_FLT_MIN ? 0.0f : r.x, abs(r.y) < RK_FLT_MIN ? 0.0f : r.y,
+                abs(r.z) < RK_FLT_MIN ? 0.0f : r.z);
 }
 
 /// rk_envmap_angle: the angle in [0, π] radians whose cosine is cos_nr (clamped to [-1, 1]),
@@ -122,15 +125,16 @@ RK_INLINE vec3 rk_reflect_correct_sphere(vec3 r_dir, vec3 cp, float radius)
 /// Artefacts at grazing angles (thesis); see rk_reflect_correct_fahlen.
 /// Domain: R, N unit (dot(N, R) is used as the cosine as it is); N·R clamped to [0, 1], d to
 /// [1e-18, 1e18], vectors to ±RK_ENVMAP_POS_MAX: finite for every finite input. Edge cases: R
-/// parallel to or behind the window (N·R <= 0) and CP = 0 return R exactly.
+/// parallel to or behind the window (N·R < RK_FLT_MIN) and CP = 0 return R exactly.
 /// Max error vs float64 R + CP max(N·R, 0) / d: 4.4e-7 of |R| + |CP| N·R / d (relative to the
 /// terms because R' itself cancels to 0 where CP N·R / d = -R; 2e7 random unit R, N, |CP| <= 50 +
 /// refinement; tests/test_envmap_correction.cpp FahlenIsThePlaneModelWithSigmaForCos asserts 1e-6).
-/// Cost: 1 dot, 1 div, 3 mul, 3 add, 5 clamps.
+/// Cost: 1 dot, 1 div, 3 mul, 3 add, 5 clamps, 1 select.
 RK_INLINE vec3 rk_reflect_correct_plane_cos(vec3 r_dir, vec3 n, vec3 cp, float d)
 {
     vec3 r = rk_envmap_clamp_pos(r_dir);
     float c = clamp(dot(rk_envmap_clamp_pos(n), r), 0.0f, 1.0f);
+    c = c < RK_FLT_MIN ? 0.0f : c;  // a subnormal cosine is 0, as on a flushing GPU
     return r + rk_envmap_clamp_pos(cp) * (c / clamp(d, 1.0e-18f, 1.0e18f));
 }
 
@@ -172,24 +176,24 @@ RK_INLINE vec3 rk_reflect_correct_fahlen(vec3 r_dir, vec3 n, vec3 cp)
 
 /// rk_reflect_correct_plane: the exact ray-plane parallax correction. The reflected surroundings
 /// are the plane {X : (X - C)·N = d} (N towards them, d > 0 its distance from C); the reflected ray
-/// P + t R hits it at H with t = (d - CP·N) / (R·N), and the environment is looked up towards
-/// H - C. Returned as (H - C)(R̂·N) = CP (R̂·N) + (d - CP·N) R̂ (R̂ = R normalised), which needs no
+/// P + t R hits it at H with t = (d - CP·N) / (R·N), and the environment is looked up towards H -
+/// C. Returned as (H - C)(R̂·N) = CP (R̂·N) + (d - CP·N) R̂ (R̂ = R normalised), which needs no
 /// division: at grazing reflections (R·N -> 0) it tends continuously to a multiple of R (the hit
 /// recedes to infinity) instead of dividing by zero. Rays leaving the plane (R·N <= 0) return a
-/// multiple of R (hit at infinity); P on or beyond the plane returns CP (R̂·N) (H = P). When the
-/// result would be zero (R = 0 or both cases at once) R is returned. With CP·N = 0 the direction
-/// equals the thesis's plane model rk_reflect_correct_plane_cos. N is normalised internally
-/// (N = 0 counts as +z); R any non-zero length. Max error: the hit C + result / (R̂·N) lies on the
-/// plane to ~1.2e-7 |CP·N| / (R̂·N |H - C|) of its distance from C, the rounding of R̂·N (4.9e-5
-/// for R̂·N >= 1e-3, P near the plane, in the test's set-up: 2e7 random + refinement;
-/// tests/test_envmap_correction.cpp prints it).
-/// Cost: 2 normalisations, 2 dot, 6 fma.
+/// multiple of R (hit at infinity; so do R·N below RK_FLT_MIN); P on or beyond the plane returns CP
+/// (R̂·N) (H = P). When the result would be zero (R = 0 or both cases at once) R is returned. With
+/// CP·N = 0 the direction equals the thesis's plane model rk_reflect_correct_plane_cos. N is
+/// normalised internally (N = 0 counts as +z); R any non-zero length. Max error: the hit C + result
+/// / (R̂·N) lies on the plane to ~1.2e-7 |CP·N| / (R̂·N |H - C|) of its distance from C, the
+/// rounding of R̂·N (4.9e-5 for R̂·N >= 1e-3, P near the plane, in the test's set-up: 2e7 random +
+/// refinement; tests/test_envmap_correction.cpp prints it). Cost: 2 normalisations, 2 dot, 6 fma.
 RK_INLINE vec3 rk_reflect_correct_plane(vec3 r_dir, vec3 p, vec3 c, vec3 n, float d)
 {
     vec3 r = rk_envmap_normalize(r_dir, vec3(0.0f));
     vec3 nn = rk_envmap_normalize(n, vec3(0.0f, 0.0f, 1.0f));
     vec3 cp = rk_envmap_clamp_pos(p) - rk_envmap_clamp_pos(c);
-    float w = max(dot(r, nn), 0.0f);
+    float w = dot(r, nn);
+    w = w >= RK_FLT_MIN ? w : 0.0f;  // a subnormal cosine is 0, as on a flushing GPU
     float h = max(clamp(d, -RK_ENVMAP_POS_MAX, RK_ENVMAP_POS_MAX) - dot(cp, nn), 0.0f);
     vec3 v = cp * w + h * r;
     float m = max(max(abs(v.x), abs(v.y)), abs(v.z));

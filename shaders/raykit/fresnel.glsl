@@ -45,6 +45,9 @@ RK_OPTION_CHECK(rk_option_fresnel_window_mode, RK_FRESNEL_WINDOW_MODE);
 
 #define RK_FRESNEL_ETA_MIN 0.000244140625f  // 1/4096
 #define RK_FRESNEL_ETA_MAX 4096.0f
+// Extinction coefficients below this (2^-60) count as 0 in rk_fresnel_conductor: their square
+// would be subnormal, which GPUs flush to zero.
+#define RK_FRESNEL_K_MIN 8.673617379884035e-19f
 
 /// rk_fresnel_clamp_eta: eta clamped to [1/4096, 4096], the domain of every function here.
 /// Cost: 1 clamp.
@@ -232,18 +235,20 @@ RK_INLINE float rk_fresnel_dielectric_poly(float cos_i, vec4 p0, vec2 p1)
 /// rk_fresnel_conductor: exact unpolarised reflectance of a conductor with complex relative index
 /// eta + i k per RGB channel (e.g. gold ~ (0.143, 0.374, 1.442) + i (3.983, 2.385, 1.603)).
 /// Standard closed form with a^2 + b^2 = |eta^2 - k^2 - sin^2 + 2 i eta k|. With k = 0 it equals
-/// rk_fresnel_dielectric for eta >= 1. Domain: cos_i clamped to [0, 1]; eta, k clamped to
-/// [0, 4096]. Max error vs the float64 complex-amplitude form (tests/reference/fresnel_ref.hpp;
-/// test_fresnel ConductorMatchesFloat64): 2.7e-7 absolute for gold, 2.4e-7 silver, 2.7e-7 copper,
-/// 2.4e-7 aluminium (their RGB n, k; every 16th cos float + refinement); over n in [0.1, 3],
-/// k in [0, 5], cos in [0, 1], against the float64 range over cos +- 1 ulp (R is infinitely steep
-/// at the critical angle for k = 0, n < 1, as for rk_fresnel_dielectric_sp): 4.4e-6, reached for
-/// small k > 0 with n < 1 near the critical angle, where R is ill-conditioned (4e7 random +
-/// refinement; mean 3.4e-8). a = Re sqrt(z), z = eta^2 - k^2 - sin^2 + 2 i eta k, is computed
-/// without the cancellation of (|z| + Re z) / 2 when Re z < 0 (that form was 3.3e-6 off at
-/// n = k = 0.1); 2e-6 asserted vs rk_fresnel_dielectric over n in [1.2, 2.4], k = 0.
-/// Cost: 3 sqrt, 3 div, ~32 flops per channel; on the CPU ~13x Schlick (bench), so use
-/// rk_fresnel_dielectric when k = 0.
+/// rk_fresnel_dielectric for eta >= 1. Domain: cos_i clamped to [0, 1]; eta, k clamped to [0,
+/// 4096], and k below RK_FRESNEL_K_MIN (2^-60) counts as 0: k^2 would be subnormal, which a GPU
+/// flushes, and with k that small R differs from the k = 0 value only within cos < ~k of grazing
+/// (at eta = 1 exactly, where R jumps to 1 at cos = 0). Max error vs the float64 complex-amplitude
+/// form (tests/reference/fresnel_ref.hpp; test_fresnel ConductorMatchesFloat64): 2.7e-7 absolute
+/// for gold, 2.4e-7 silver, 2.7e-7 copper, 2.4e-7 aluminium (their RGB n, k; every 16th cos float +
+/// refinement); over n in [0.1, 3], k in [0, 5], cos in [0, 1], against the float64 range over cos
+/// +- 1 ulp (R is infinitely steep at the critical angle for k = 0, n < 1, as for
+/// rk_fresnel_dielectric_sp): 4.4e-6, reached for small k > 0 with n < 1 near the critical angle,
+/// where R is ill-conditioned (4e7 random + refinement; mean 3.4e-8). a = Re sqrt(z), z = eta^2 -
+/// k^2 - sin^2 + 2 i eta k, is computed without the cancellation of (|z| + Re z) / 2 when Re z < 0
+/// (that form was 3.3e-6 off at n = k = 0.1); 2e-6 asserted vs rk_fresnel_dielectric over n in
+/// [1.2, 2.4], k = 0. Cost: 3 sqrt, 3 div, ~32 flops per channel; on the CPU ~13x Schlick (bench),
+/// so use rk_fresnel_dielectric when k = 0.
 RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
 {
     float c = rk_saturate(cos_i);
@@ -251,6 +256,7 @@ RK_INLINE vec3 rk_fresnel_conductor(float cos_i, vec3 eta, vec3 k)
     RK_PRECISE float s2 = (1.0f - c) * (1.0f + c);
     vec3 n = clamp(eta, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
     vec3 kk = clamp(k, vec3(0.0f), vec3(RK_FRESNEL_ETA_MAX));
+    kk = mix(kk, vec3(0.0f), lessThan(kk, vec3(RK_FRESNEL_K_MIN)));
     vec3 n2 = n * n;
     vec3 k2 = kk * kk;
     // eta^2 - k^2 - sin^2 written as (eta - 1)(eta + 1) - k^2 + cos^2: no cancellation at

@@ -47,10 +47,12 @@ RK_INLINE float rk_gb_clamp_unit(float x) { return x >= -1.0f ? min(x, 1.0f) : (
 // Octahedral
 
 /// rk_gb_oct_encode: a direction -> p in [-1, 1]^2: p = (x, y) / (|x| + |y| + |z|), folded over
-/// the diagonals for z < 0 (z = -0 is not folded; on a fold, x = 0 or y = 0 goes to the + side).
+/// the diagonals for z < 0 (z = -0 is not folded; on a fold, x = 0 or y = 0 goes to the + side,
+/// and so does an x or y whose share of |x| + |y| + |z| is below RK_FLT_MIN, as on a GPU that
+/// flushes subnormals).
 /// Domain: any finite vector (see rk_normalize_safe in common.glsl). Max error: dir -> p -> dir through
 /// rk_gb_oct_decode within 3.5e-7 rad (10^7 random directions + rings through the poles, folds
-/// and equator: docs/deferred.md). Cost: 1 div, ~15 flops.
+/// and equator: docs/deferred.md). Cost: 1 div, ~17 flops.
 RK_INLINE vec2 rk_gb_oct_encode(vec3 n)
 {
     float m = max(max(abs(n.x), abs(n.y)), abs(n.z));
@@ -62,8 +64,12 @@ RK_INLINE vec2 rk_gb_oct_encode(vec3 n)
     }
     vec3 p = n / m;
     float l1 = abs(p.x) + abs(p.y) + abs(p.z);
+    // A subnormal u or v counts as 0 (a GPU flushes it to a zero of either sign, which the fold
+    // would send to the + side while the CPU sends the negative value to the - side).
     float u = p.x / l1;
     float v = p.y / l1;
+    u = abs(u) >= RK_FLT_MIN ? u : 0.0f;
+    v = abs(v) >= RK_FLT_MIN ? v : 0.0f;
     if (p.z < 0.0f) {
         vec2 f = rk_oct_fold(u, v);
         u = f.x;
@@ -299,7 +305,9 @@ RK_INLINE vec3 rk_gb_depth_params(float n, float f, bool reversed)
 /// Window depth is d = (1/n - 1/dist) / (1/n - 1/f) (usual; reversed-Z: 1 - that), so with
 /// t = |k.z - d| (1 - d usual, d reversed; exact for d >= 0.5), 1 / dist = t / n + (1 - t) / f:
 /// two non-negative terms, no cancellation, unlike the textbook n f / (f - d (f - n)), which loses
-/// f / n ulps near the far plane. The far plane of an infinite projection gives RK_FLT_MAX.
+/// f / n ulps near the far plane. The far plane of an infinite projection gives RK_FLT_MAX, and so
+/// does any depth whose 1 / dist is below RK_FLT_MIN (dist beyond 8.5e37, where 1 / dist would be
+/// subnormal and a GPU flushes it to 0).
 /// Max error (relative, against float64 at the same stored d): 2e-7 (tests/test_gbuffer.cpp: every
 /// 64th float in [0, 1], every float near 0 and 1, five conventions); what the
 /// stored d itself carries depends on the convention (the usual one keeps ~dist / n ulps, reversed-Z
@@ -310,7 +318,7 @@ RK_INLINE float rk_gb_linear_depth(float d, vec3 k)
     float dc = d >= 0.0f ? min(d, 1.0f) : (d < 0.0f ? 0.0f : 1.0f - k.z);
     float t = abs(k.z - dc);
     float q = t * k.x + (1.0f - t) * k.y;
-    return q > 0.0f ? clamp(1.0f / q, RK_FLT_MIN, RK_FLT_MAX) : RK_FLT_MAX;
+    return q >= RK_FLT_MIN ? clamp(1.0f / q, RK_FLT_MIN, RK_FLT_MAX) : RK_FLT_MAX;
 }
 
 /// rk_gb_window_depth: the window depth of view distance `dist` (> 0) for k from
@@ -329,8 +337,10 @@ RK_INLINE float rk_gb_window_depth(float dist, vec3 k)
 /// (1 / P[0][0], 1 / P[1][1], P[2][0] / P[0][0], P[2][1] / P[1][1]) of the column-major
 /// projection P (off-centre frusta and a negative P[1][1] for Vulkan's y-flip included;
 /// gbuffer_view_ray in C++). Domain: ndc in [-1, 1]^2 (a guard band beyond works), dist >= 0;
-/// any finite input gives a finite result (overflow is held at +-RK_FLT_MAX). Cost: 2 fma, 3 mul,
-/// 3 clamps.
+/// any finite input gives a finite result (overflow is held at +-RK_FLT_MAX). The same result on a
+/// GPU that flushes subnormals needs ndc components 0 or of magnitude >= 2^-40 and ray components
+/// 0 or >= 2^-20 (any projection up to P[0][0] = 2^20): the products then stay normal.
+/// Cost: 2 fma, 3 mul, 3 clamps.
 RK_INLINE vec3 rk_gb_view_pos(vec2 ndc, float dist, vec4 ray)
 {
     float sx = clamp(ndc.x * ray.x + ray.z, -RK_FLT_MAX, RK_FLT_MAX);

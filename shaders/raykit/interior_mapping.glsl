@@ -164,16 +164,21 @@ struct rk_im_hit {
 /// rk_im_grid_coord: grid (room-unit) coordinates of an object-space point, (x - origin) /
 /// room_size, room_size taken as clamp(|room_size|, 1e-4, 1e6) and the result clamped to
 /// +-2^30 (x - origin may overflow to +-Inf only for components beyond 1.7e38, far outside the
-/// domain; the clamp maps that to +-2^30, never NaN). Exact up to one rounding of the subtraction
-/// and one of the division. Cost: 3 sub, 3 div, 1 abs + 2 clamps (vec3).
+/// domain; the clamp maps that to +-2^30, never NaN). A coordinate below RK_FLT_MIN in magnitude
+/// is 0 (a GPU that flushes subnormals makes it so; otherwise a point 1e-38 below the origin's
+/// planes would be in room -1 on one build and 0 on the other). Exact up to one rounding of the
+/// subtraction and one of the division. Cost: 3 sub, 3 div, 1 abs + 2 clamps, 3 selects (vec3).
 RK_INLINE vec3 rk_im_grid_coord(vec3 x, rk_im_grid g)
 {
     vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
-    return clamp((x - g.origin) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
+    vec3 q = clamp((x - g.origin) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
+    return vec3(abs(q.x) < RK_FLT_MIN ? 0.0f : q.x, abs(q.y) < RK_FLT_MIN ? 0.0f : q.y,
+                abs(q.z) < RK_FLT_MIN ? 0.0f : q.z);
 }
 
 /// rk_im_room_at: the grid cell containing the object-space point p: floor of its grid
-/// coordinates (a point exactly on a plane belongs to the cell on the plane's + side). Domain:
+/// coordinates (a point exactly on a plane belongs to the cell on the plane's + side, and so does
+/// one within a subnormal grid distance of the origin's planes). Domain:
 /// any finite p; exact for |q| < 2^22 rooms. For gameplay queries (which room is lit?). Regular
 /// grid only (rk_im_room_at_varying for displaced walls). Cost: rk_im_grid_coord + 3 floor.
 RK_INLINE ivec3 rk_im_room_at(vec3 p, rk_im_grid g) { return ivec3(floor(rk_im_grid_coord(p, g))); }
@@ -206,15 +211,24 @@ RK_INLINE float rk_im_face_random(ivec3 room, int family, int side, uint seed)
 /// Cost: that of rk_im_room_random.
 RK_INLINE bool rk_im_room_lit(ivec3 room, float c, uint seed) { return rk_im_room_random(room, seed) < c; }
 
+/// rk_im_jitter: the wall jitter the varying-walls model uses: clamped to [0, 1], and 0 below 2^-64,
+/// where jitter * hash (rk_im_wall_offset) could be subnormal, which a GPU flushes: the room of a
+/// point 1e-38 from a wall would then differ between builds. Exact. Cost: 1 clamp, 1 select.
+RK_INLINE vec3 rk_im_jitter(vec3 jitter)
+{
+    vec3 j = clamp(jitter, vec3(0.0f), vec3(1.0f));
+    return mix(j, vec3(0.0f), lessThan(j, vec3(5.421010862427522e-20f)));
+}
+
 /// rk_im_wall_offset: the displacement, in room units in [0, 1), of wall k of axis (0 x, 1 y,
-/// 2 z) in the varying-walls model: clamp(jitter, 0, 1) * rk_u32_to_unit(rk_hash_u32(uint(k) ^
+/// 2 z) in the varying-walls model: rk_im_jitter(jitter) * rk_u32_to_unit(rk_hash_u32(uint(k) ^
 /// key(axis, seed))), key(axis, seed) = rk_hash_u32(seed + axis * 2654435769u). A function of the
 /// wall index only, so each wall plane moves as a whole. Exact (bit-identical on CPU/GPU). Cost:
 /// 2 rk_hash_u32 (the key is shared between calls after common-subexpression elimination).
 RK_INLINE float rk_im_wall_offset(int axis, int k, float jitter, uint seed)
 {
     uint key = rk_hash_u32(seed + uint(axis) * 2654435769u);
-    return clamp(jitter, 0.0f, 1.0f) * rk_u32_to_unit(rk_hash_u32(uint(k) ^ key));
+    return rk_im_jitter(vec3(jitter)).x * rk_u32_to_unit(rk_hash_u32(uint(k) ^ key));
 }
 
 // ---- implementation details (not part of the API) ----------------------------------------------
@@ -249,7 +263,7 @@ RK_INLINE ivec3 rk_im_room_at_varying(vec3 p, rk_im_grid g, vec3 jitter, uint se
 {
     vec3 q = rk_im_grid_coord(p, g);
     vec3 m = floor(q);
-    vec3 wm = m + rk_im_detail_wall_offset3(m, rk_im_detail_wall_keys(seed), clamp(jitter, vec3(0.0f), vec3(1.0f)));
+    vec3 wm = m + rk_im_detail_wall_offset3(m, rk_im_detail_wall_keys(seed), rk_im_jitter(jitter));
     // q < wm  <=>  not (q >= wm) = 1 - step(wm, q)
     return ivec3(m - (vec3(1.0f) - step(wm, q)));
 }
@@ -293,10 +307,16 @@ RK_INLINE rk_im_detail_ray rk_im_detail_setup(vec3 p, vec3 cam, vec3 n, rk_im_gr
     // are replaced by 1; the others between that and thr are parallel too and get the sentinel.
     r.ie = vec3(1.0f) / mix(vec3(1.0f), r.e, bvec3(step(vec3(RK_IM_PARALLEL * RK_IM_DIR_MIN), ae)));
     float nmax = max(max(abs(n.x), abs(n.y)), abs(n.z));
-    // Only the sign of dot(n, v) matters: n scaled by 1 / nmax (clamped so that the scale is a
-    // normal float and the dot cannot overflow).
+    // Only the sign of dot(n, v) matters: n and v scaled by their largest components (clamped so
+    // that the scales are normal floats and the dot cannot overflow), components below 2^-60 of
+    // those dropped and a dot below RK_FLT_MIN read as 0, so that no product or sum is subnormal
+    // (a GPU that flushes subnormals then decides as the CPU does).
     vec3 nn = n * (1.0f / clamp(nmax, 1e-30f, 1e30f));
-    bool facing = dot(nn, r.v) < 0.0f;  // (a separate bool: && of plain values needs no branch)
+    float vmax = max(max(abs(r.v.x), abs(r.v.y)), abs(r.v.z));
+    vec3 vn = r.v * (1.0f / clamp(vmax, 1e-30f, 1e30f));
+    nn = mix(nn, vec3(0.0f), lessThan(abs(nn), vec3(8.673617379884035e-19f)));
+    vn = mix(vn, vec3(0.0f), lessThan(abs(vn), vec3(8.673617379884035e-19f)));
+    bool facing = dot(nn, vn) <= -RK_FLT_MIN;  // (a separate bool: && of plain values needs no branch)
     r.valid = nmax >= 1e-30f && emax >= RK_IM_DIR_MIN && facing;
     vec3 up_ray = step(vec3(-thr), r.e);
     vec3 ones = vec3(1.0f);
@@ -388,7 +408,7 @@ RK_INLINE rk_im_hit rk_im_detail_trace_varying(vec3 p, vec3 cam, vec3 n, vec3 dp
 {
     rk_im_detail_ray r = rk_im_detail_setup(p, cam, n, g);
     uvec3 key = rk_im_detail_wall_keys(seed);
-    vec3 jit = clamp(jitter, vec3(0.0f), vec3(1.0f));
+    vec3 jit = rk_im_jitter(jitter);
     vec3 m = floor(r.qn);
     vec3 wm = m + rk_im_detail_wall_offset3(m, key, jit);
     vec3 not_m = step((wm - r.qn) * r.s, vec3(0.0f));  // 1: wall m is not beyond q' along the ray
@@ -439,7 +459,7 @@ RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 
 /// rk_im_trace_varying_grad: the trace with walls (and floors, jitter.y) displaced per wall
 /// index: wall k of axis i at k + rk_im_wall_offset(i, k, jitter_i, seed) room units, jitter in
-/// [0, 1] (clamped; 0 gives the regular grid up to the uv/room conventions). Exact two-candidate
+/// [0, 1] (rk_im_jitter; 0 gives the regular grid up to the uv/room conventions). Exact two-candidate
 /// rule (file header); room = the cell between the displaced walls; uv normalised across the
 /// displaced room's actual width, [0, 1); derivatives as rk_im_trace_grad divided by that width.
 /// Max error vs brute force over the displaced planes (200,000 random and adversarial rays,

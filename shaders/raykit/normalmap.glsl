@@ -21,12 +21,14 @@
 
 #include "common.glsl"
 
-/// rk_nm_basis_tangent: a unit tangent perpendicular to unit n, continuous except across n.z = 0's
-/// sign flip (Duff et al., "Building an Orthonormal Basis, Revisited", 2017). The fallback when a
-/// mesh gives no usable tangent. Exact to float rounding for unit n. Cost: ~10 flops, 1 div.
+/// rk_nm_basis_tangent: a unit tangent perpendicular to unit n, continuous except where n.z's sign
+/// bit flips (Duff et al., "Building an Orthonormal Basis, Revisited", 2017; -0 is on the negative
+/// side, so a subnormal n.z that a GPU flushes to a zero of the same sign picks the same side). The
+/// fallback when a mesh gives no usable tangent. Exact to float rounding for unit n.
+/// Cost: ~10 flops, 1 div.
 RK_INLINE vec3 rk_nm_basis_tangent(vec3 n)
 {
-    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float s = (floatBitsToUint(n.z) & 0x80000000u) != 0u ? -1.0f : 1.0f;
     float a = -1.0f / (s + n.z);
     float b = n.x * n.y * a;
     return vec3(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
@@ -40,10 +42,11 @@ RK_INLINE vec3 rk_nm_basis_tangent(vec3 n)
 RK_INLINE mat3 rk_nm_tbn(vec3 n, vec4 t)
 {
     vec3 nn = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
-    vec3 tt = vec3(t.x, t.y, t.z);
+    // Normalised before Gram-Schmidt: the projection of a tiny tangent onto N would be subnormal.
+    vec3 tt = rk_normalize_safe(vec3(t.x, t.y, t.z), vec3(0.0f));
     vec3 tp = rk_normalize_safe(tt - nn * dot(nn, tt), vec3(0.0f));
     // Within 0.26 degrees of n the tangent carries no usable direction: use the basis instead.
-    if (dot(tp, tp) == 0.0f || abs(dot(nn, rk_normalize_safe(tt, nn))) > 0.99999f) tp = rk_nm_basis_tangent(nn);
+    if (dot(tp, tp) == 0.0f || abs(dot(nn, tt)) > 0.99999f) tp = rk_nm_basis_tangent(nn);
     // A second Gram-Schmidt step: the first leaves a residue of rounding / sin(angle(t, n)).
     tp = rk_normalize_safe(tp - nn * dot(nn, tp), rk_nm_basis_tangent(nn));
     float w = t.w < 0.0f ? -1.0f : 1.0f;

@@ -80,9 +80,11 @@ RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 7.8886090
 /// component is below RK_FLT_MIN in magnitude (zero, or denormal, which GPUs flush to zero).
 /// Denormal components count as zero on every backend: beside a component near RK_FLT_MIN a
 /// denormal one would otherwise tilt the direction by up to 45 degrees, across the hemisphere
-/// that the raw sign test (rk_dual_paraboloid_hemi) chose. Max error: 3.8 ulp per component
-/// against float64 of that vector (4e7 random + refinement).
-/// Cost: 4 max/abs, 3 select, 1 div, 1 dot, 1 rsqrt.
+/// that the raw sign test (rk_dual_paraboloid_hemi) chose. Result components below RK_FLT_MIN
+/// (a component over 2^126 times smaller than the largest) are 0 on every backend as well.
+/// Max error: 3.8 ulp per component against float64 of that vector (4e7 random + refinement),
+/// plus the flush of results below RK_FLT_MIN.
+/// Cost: 7 max/abs, 6 select, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
 {
     vec3 w = vec3(abs(v.x) < RK_FLT_MIN ? 0.0f : v.x, abs(v.y) < RK_FLT_MIN ? 0.0f : v.y,
@@ -93,7 +95,11 @@ RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
     }
     float pre = rk_paraboloid_prescale(m);
     vec3 q = (w * pre) / (m * pre);  // largest component +-1, dot(q, q) in [1, 3]
-    return q * inversesqrt(dot(q, q));
+    vec3 r = q * inversesqrt(dot(q, q));
+    // Result components below RK_FLT_MIN (from one much smaller than the largest) are 0 too: a GPU
+    // flushes them, and a frame or a seam weight built on them would differ.
+    return vec3(abs(r.x) < RK_FLT_MIN ? 0.0f : r.x, abs(r.y) < RK_FLT_MIN ? 0.0f : r.y,
+                abs(r.z) < RK_FLT_MIN ? 0.0f : r.z);
 }
 
 /// rk_paraboloid_encode: paraboloid coordinates st = (x, y) / (1 + hemi z) of the direction `dir`
@@ -338,7 +344,8 @@ RK_INLINE float rk_dual_paraboloid_seam_weight(vec3 dir, float band)
         return rk_dual_paraboloid_hemi(dir) > 0.0f ? 1.0f : 0.0f;
     }
     vec3 n = rk_paraboloid_normalize(dir, vec3(0.0f, 0.0f, 1.0f));
-    return clamp(0.5f + 0.5f * n.z / min(band, 1.0f), 0.0f, 1.0f);
+    // Divided first: 0.5 * n.z can be subnormal (flushed on a GPU) where n.z / band is not.
+    return clamp(0.5f + 0.5f * (n.z / min(band, 1.0f)), 0.0f, 1.0f);
 }
 
 /// rk_dual_paraboloid_uv_differential: the change of rk_dual_paraboloid_uv for a change d_dir of
@@ -467,24 +474,26 @@ RK_INLINE float rk_paraboloid_depth_decode(float depth, float z_near, float z_fa
 /// (glViewport on that half, so NDC [-1, 1] covers it): xy = guard_scale * rk_paraboloid_encode(p),
 /// z = 2 depth - 1 with the linear-distance depth (GL's default depth range; with
 /// glClipControl(GL_ZERO_TO_ONE) or Vulkan use rk_paraboloid_depth_encode instead), w = 1 (no
-/// perspective division: the caveat above). Pair with rk_paraboloid_clip_distance.
-/// Domain: p clamped to ±RK_PARABOLOID_POS_MAX, z_near/z_far as rk_paraboloid_depth_encode,
-/// guard_scale to [RK_PARABOLOID_GUARD_MIN, 1], hemi as everywhere here. Edge cases: p = 0 returns
-/// (0, 0, -2, 1) (clipped); p in the other hemisphere gives |xy| > g (outside the half's disk,
-/// culled by rk_paraboloid_clip_distance); the exact antipode of d0 gives xy = (0, 0); distances
-/// beyond z_far give z > 1 and below z_near z < -1 (clipped by the depth range).
-/// Max error vs float64 g (x, y) / (|p| + hemi z) and 2 (|p| - z_near) / (z_far - z_near) - 1:
-/// 2.6e-7 in xy, 4.9e-7 of max(1, |z|) in z (|p| in 1e-3..1e4 in the half's hemisphere, z_far up
-/// to 1e4; 2e7 random + refinement; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64);
-/// llvmpipe within 48 ulp of the CPU (GPU parity).
-/// Cost: 1 sqrt, 1 rsqrt, 3 div, ~30 flops, 6 clamps.
+/// perspective division: the caveat above). Pair with rk_paraboloid_clip_distance. Domain: p
+/// clamped to ±RK_PARABOLOID_POS_MAX, z_near/z_far as rk_paraboloid_depth_encode, guard_scale to
+/// [RK_PARABOLOID_GUARD_MIN, 1], hemi as everywhere here. Edge cases: p = 0 (each component below
+/// RK_FLT_MIN) returns (0, 0, -2, 1) (clipped); p in the other hemisphere gives |xy| > g (outside
+/// the half's disk, culled by rk_paraboloid_clip_distance); the exact antipode of d0 gives xy = (0,
+/// 0); distances beyond z_far give z > 1 and below z_near z < -1 (clipped by the depth range). Max
+/// error vs float64 g (x, y) / (|p| + hemi z) and 2 (|p| - z_near) / (z_far - z_near) - 1: 2.6e-7
+/// in xy, 4.9e-7 of max(1, |z|) in z (|p| in 1e-3..1e4 in the half's hemisphere, z_far up to 1e4;
+/// 2e7 random + refinement; tests/test_paraboloid.cpp ProjectionAndDepthAgainstFloat64); llvmpipe
+/// within 48 ulp of the CPU (GPU parity). Cost: 1 sqrt, 1 rsqrt, 4 div, ~35 flops, 6 clamps.
 RK_INLINE vec4 rk_paraboloid_project(vec3 p, float z_near, float z_far, float hemi, float guard_scale)
 {
     vec3 q = clamp(p, vec3(-RK_PARABOLOID_POS_MAX), vec3(RK_PARABOLOID_POS_MAX));
-    float dist = length(q);  // <= 1.8e18, no overflow
-    if (dist < RK_FLT_MIN) {
+    float m = rk_paraboloid_max_abs(q);
+    if (m < RK_FLT_MIN) {
         return vec4(0.0f, 0.0f, -2.0f, 1.0f);
     }
+    // |q| scaled by its largest component: the squares of a tiny q would be subnormal (flushed on
+    // a GPU, which would then see p = 0).
+    float dist = m * length(q / m);  // <= 1.8e18, no overflow
     float g = clamp(guard_scale, RK_PARABOLOID_GUARD_MIN, 1.0f);
     vec2 st = rk_paraboloid_encode(q, hemi);
     float z = 2.0f * rk_paraboloid_depth_encode(dist, z_near, z_far) - 1.0f;

@@ -112,7 +112,13 @@ TEST(GpuParity, Gbuffer)
     // that fuses the multiply-add (allowed by GLSL) rounds differently.
     cases.push_back({RK_PARITY_X("rk_gb_view_pos", G, (dom::signed_unit(), dom::signed_unit(), planes(), any(), any()), 3,
                                float rx = clamp(a[3], -4.0f, 4.0f); float ry = clamp(a[4], -4.0f, 4.0f);
-                               vec3 p = rk_gb_view_pos(vec2(a[0], a[1]), a[2], vec4(rx, ry, 1.5f * rx, -1.5f * ry));
+                               // The documented domain: ray and NDC components 0 or of magnitude
+                               // >= 2^-20 and 2^-40 (products then stay normal on flushing drivers).
+                               rx = abs(rx) >= 9.5367431640625e-7f ? rx : 0.0f;
+                               ry = abs(ry) >= 9.5367431640625e-7f ? ry : 0.0f;
+                               float nx = abs(a[0]) >= 9.094947017729282e-13f ? a[0] : 0.0f;
+                               float ny = abs(a[1]) >= 9.094947017729282e-13f ? a[1] : 0.0f;
+                               vec3 p = rk_gb_view_pos(vec2(nx, ny), a[2], vec4(rx, ry, 1.5f * rx, -1.5f * ry));
                                o[0] = p.x; o[1] = p.y; o[2] = p.z;),
                      {}});
     // Near the maps' singular points (the hemisphere's equator, Lambert's rim at -z) the decode

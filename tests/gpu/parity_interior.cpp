@@ -112,6 +112,9 @@ std::vector<Entry> interior_cases()
                              (dom::signed_unit(), dom::signed_unit(), dom::signed_unit(), dom::unit(), dom::unit(), dom::unit()), 1,
                              o[0] = rk_im_room_lit(ivec3(RK_INT(0), RK_INT(1), RK_INT(2)), a[5], RK_KEY(3, 4)) ? 1.0f : 0.0f;),
                  {0}});
+    e.push_back({RK_PARITY_X("rk_im_jitter", I, (dom::signed_unit(), dom::unit(), dom::range(0.0f, 2.0f)), 3,
+                             vec3 j = rk_im_jitter(vec3(a[0], a[1], a[2])); o[0] = j.x; o[1] = j.y; o[2] = j.z;),
+                 {0, 1, 2}});
     e.push_back({RK_PARITY_X("rk_im_wall_offset", I, (dom::range(0.0f, 3.0f), dom::signed_unit(), dom::unit(), dom::unit(), dom::unit()),
                              1, o[0] = rk_im_wall_offset(int(clamp(a[0], 0.0f, 2.0f)), RK_INT(1), a[2], RK_KEY(3, 4));),
                  {0}});
