@@ -57,25 +57,55 @@ RK_INLINE float rk_ray_maxabs_(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs
 // ---------------------------------------------------------------------------------------------
 // Plane (half-space)
 
+/// rk_ray_dot64_: internal. dot(nb, x) 2^-64 for nb = n̂ 2^64 (|nb_i| <= 2^64), each product taken
+/// between normal factors where it can reach RK_FLT_MIN: nb_i (x_i 2^-64) for |x_i| >= 2^-62, else
+/// (nb_i 2^-64) x_i. Each term is at most RK_FLT_MAX.
+RK_INLINE float rk_ray_mul64_(float nb, float x)
+{
+    return abs(x) >= 2.1684043e-19f ? nb * (x * 5.42101086e-20f) : (nb * 5.42101086e-20f) * x;
+}
+
+RK_INLINE float rk_ray_dot64_(vec3 nb, vec3 x)
+{
+    return (rk_ray_mul64_(nb.x, x.x) + rk_ray_mul64_(nb.y, x.y)) + rk_ray_mul64_(nb.z, x.z);
+}
+
 /// rk_ray_plane: the interval of o + t d inside the closed half-space dot(n, p - p0) <= 0 (the
 /// plane through p0 with normal n, n pointing out of the solid): the ray crosses the plane at
 /// t = dot(n, p0 - o) / dot(n, d); entering (dot(n, d) < 0) gives (t, RK_FLT_MAX), leaving gives
-/// (-RK_FLT_MAX, t). Parallel (|dot(n̂, d)| < RK_FLT_MIN, n̂ = n / |n|): (-RK_FLT_MAX, RK_FLT_MAX)
-/// when o is inside (on the plane counts), else RK_RAY_MISS. n need not be normalised; a zero (or
+/// (-RK_FLT_MAX, t). Parallel (|dot(n̂, d)| <= RK_FLT_MIN, n̂ = n / |n|): (-RK_FLT_MAX, RK_FLT_MAX)
+/// when o is inside (on the plane counts, as does a distance dot(n̂, p0 - o) >= -RK_FLT_MIN, which
+/// a GPU that flushes denormals reads as ±0), else RK_RAY_MISS. n need not be normalised; a zero (or
 /// denormal, or non-finite) n reads as +z. Domain: any finite inputs.
 /// Max error (t against a long double reference; 10^7 random rays with p0, o within 1e3 and random
 /// n, d of lengths 1e-3..1e3, 10^7 within 1e6; no local refinement): |Δt| <= 2.4 ε (|p0 - o| +
 /// |t| |d|) / |n̂·d|, ε = 2^-24 (the roundings of n̂ and of the two dot products: a grazing ray's t is
-/// as ill-conditioned as that). Cost: 1 normalisation, 2 dot, 1 div.
+/// as ill-conditioned as that). Denormals: n̂ is held times 2^64 and each product n̂_i x_i formed
+/// from normal factors, so a flushing GPU agrees with the CPU (the same bits as rk_normalize_safe
+/// and dot where nothing underflows). Cost: 1 normalisation, 2 dot, 1 div, ~12 selects.
 RK_INLINE vec2 rk_ray_plane(vec3 o, vec3 d, vec3 p0, vec3 n)
 {
-    vec3 nn = rk_normalize_safe(n, vec3(0.0f, 0.0f, 1.0f));
+    // n̂ 2^64 (nb): n / |n| with its components down to 2^-190 normal, where n / |n| would leave those
+    // below 2^-126 denormal (flushed to 0 by a GPU that flushes denormals, which then lost a term
+    // such as n̂_y w_y = 2^-127 FLT_MAX). Dividing by m 2^-64 and rescaling by exact powers of two
+    // gives rk_normalize_safe(n)'s bits times 2^64.
+    float mn = rk_ray_maxabs_(n);
+    bool nok = mn >= RK_FLT_MIN && abs(n.x) <= RK_FLT_MAX && abs(n.y) <= RK_FLT_MAX && abs(n.z) <= RK_FLT_MAX;
+    vec3 nv = nok ? n : vec3(0.0f, 0.0f, 1.0f);
+    float mv = nok ? mn : 1.0f;
+    vec3 nb = mv >= 2.1684043e-19f ? nv / (mv * 5.42101086e-20f) : (nv * 1.84467441e19f) / mv;
+    vec3 p = nb * 5.42101086e-20f;  // n / m: largest component ±1 (those lost here add < 2^-252 to |p|²)
+    nb = nb * inversesqrt(dot(p, p));
     vec3 w = rk_ray_clamp3_(p0 - o);
-    // Each term is at most RK_FLT_MAX, so a sum can overflow to ±Inf but never give NaN; clamped.
-    float num = clamp(dot(nn, w), -RK_FLT_MAX, RK_FLT_MAX);  // >= 0: o is inside (or on the plane)
-    float den = clamp(dot(nn, d), -RK_FLT_MAX, RK_FLT_MAX);
-    bool inside = num >= 0.0f;
-    if (!(abs(den) >= RK_FLT_MIN)) return inside ? vec2(-RK_FLT_MAX, RK_FLT_MAX) : RK_RAY_MISS;
+    // Each term n̂_i x_i is formed from two normal factors where it can matter (x_i 2^-64 for
+    // |x_i| >= 2^-62, else n̂_i itself) and is at most RK_FLT_MAX, so a sum can overflow to ±Inf but
+    // never give NaN; clamped.
+    float num = clamp(rk_ray_dot64_(nb, w), -RK_FLT_MAX, RK_FLT_MAX);  // > -FLT_MIN: o is inside
+    float den = clamp(rk_ray_dot64_(nb, d), -RK_FLT_MAX, RK_FLT_MAX);
+    // On the plane counts as inside, and so does a distance below RK_FLT_MIN (a flushing GPU reads
+    // it as ±0; deciding by its sign would differ between the builds).
+    bool inside = num >= -RK_FLT_MIN;
+    if (!(abs(den) > RK_FLT_MIN)) return inside ? vec2(-RK_FLT_MAX, RK_FLT_MAX) : RK_RAY_MISS;
     float t = clamp(num / den, -RK_FLT_MAX, RK_FLT_MAX);
     return den < 0.0f ? vec2(t, RK_FLT_MAX) : vec2(-RK_FLT_MAX, t);
 }
@@ -104,6 +134,10 @@ RK_INLINE float rk_ray_plane_t(vec3 o, vec3 d, vec3 p0, vec3 n)
 /// half-chord h = sqrt((r - |f|)(r + |f|)), the roots -b ∓ h. Their alternative second root c/q
 /// (c = |w|² - r²) is not used: c cancels for an origin near the surface, and q = -b - sign(b) h is
 /// tiny for a tangent ray passing next to its origin, which c/q turns into a huge error.
+/// Denormals (a GPU may flush them): u is held times 2^64 and its products formed from normal
+/// factors, |f| below 2^-30 is taken from f scaled by its largest component, hit or miss is
+/// |f| <= r, and h² below RK_FLT_MIN is taken as sqrt(r - |f|) sqrt(r + |f|); all exact powers of two
+/// or branches that leave an ordinary ray's bits unchanged.
 RK_INLINE vec2 rk_ray_sphere_core_(vec3 w, vec3 d, float r, RK_OUT(vec3) n_enter, RK_OUT(vec3) n_exit)
 {
     n_enter = vec3(0.0f);
@@ -123,20 +157,37 @@ RK_INLINE vec2 rk_ray_sphere_core_(vec3 w, vec3 d, float r, RK_OUT(vec3) n_enter
     // GLSL defines division only for divisors up to 2^126), u = dn / |dn|.
     bool big = m > 1.2676506e30f;
     float mm = big ? m * 7.8886091e-31f : m;
-    vec3 dn = (big ? d * 7.8886091e-31f : d) / mm;
+    // dn and u are formed times 2^64 (dn64, u64; exact powers of two, so the same bits): a component
+    // of d down to 2^-190 of the largest stays normal, and the products with u below are taken by
+    // rk_ray_mul64_ between normal factors. d / m alone left such components denormal, flushed by a
+    // GPU: a ray (1, 2^-130, 0) from 2^128 away then passed its target 1 unit off.
+    vec3 db = big ? d * 7.8886091e-31f : d;
+    vec3 dn64 = mm >= 2.1684043e-19f ? db / (mm * 5.42101086e-20f) : (db * 1.84467441e19f) / mm;
+    vec3 dn = dn64 * 5.42101086e-20f;
     float len = sqrt(dot(dn, dn));  // in [1, sqrt(3)]
-    vec3 u = dn / len;
-
-    float b = dot(ws, u);
-    vec3 f = ws - b * u;
-    float lf = length(f);
+    vec3 u64 = dn64 / len;
+    vec3 u = u64 * 5.42101086e-20f;
+    float b = rk_ray_dot64_(u64, ws);
+    vec3 bu = vec3(rk_ray_mul64_(u64.x, b), rk_ray_mul64_(u64.y, b), rk_ray_mul64_(u64.z, b));
+    vec3 f = ws - bu;
+    // |f|: below 2^-30 (|f|² < 2^-60), from f scaled by its largest component, so that no square
+    // underflows (a GPU that flushes denormals read |f| = 1e-22 as 0, a hit for r = 0); components
+    // below RK_FLT_MIN count as 0 in both builds. A NaN (an overflowed matrix product of the
+    // ellipsoid_m variants) reaches sqrt and misses below.
+    float lf2 = dot(f, f);
+    float mf = rk_ray_maxabs_(f);
+    float lf = !(lf2 < 8.67361738e-19f) ? sqrt(lf2) : (mf > RK_FLT_MIN ? mf * length(f / mf) : 0.0f);
+    // Hit or miss from |f| <= r itself, not from the sign of h², which underflows to ±0 for a tiny
+    // sphere or a near-tangent ray.
+    if (!(lf <= rs)) return RK_RAY_MISS;
     RK_PRECISE float h2 = (rs - lf) * (rs + lf);
-    if (!(h2 >= 0.0f)) return RK_RAY_MISS;
-    float h = sqrt(h2);
+    // Below RK_FLT_MIN (denormal, or flushed to 0 on a GPU) h² is taken as the product of the roots.
+    float h = h2 > RK_FLT_MIN ? sqrt(h2) : sqrt(rs - lf) * sqrt(rs + lf);
     // Outward normals at the entry and exit points, f -/+ h u relative to the centre (from the
     // closest-approach vector, not from o + t d - c, which cancels for a distant origin).
-    n_enter = rk_normalize_safe(f - h * u, -u);
-    n_exit = rk_normalize_safe(f + h * u, u);
+    vec3 hu = vec3(rk_ray_mul64_(u64.x, h), rk_ray_mul64_(u64.y, h), rk_ray_mul64_(u64.z, h));
+    n_enter = rk_normalize_safe(f - hu, -u);
+    n_exit = rk_normalize_safe(f + hu, u);
     vec2 t = vec2(-b - h, -b + h);
     // Back to units of d: t / (len * m) / k, dividing step by step so that nothing overflows
     // (clamped where the true value does) and exact powers of two stay exact.
@@ -172,7 +223,8 @@ RK_INLINE vec2 rk_ray_sphere_normals(vec3 o, vec3 d, vec3 c, float r, RK_OUT(vec
 /// of the rays and is up to 7e-4 off on the rest), growing as the ray grazes, where t itself is
 /// ill-conditioned. A ray whose exact h² is below 4 ε (|o - c| + r) r may hit or miss (the only
 /// flips seen in those 2 x 10^7 rays).
-/// Cost: ~45 flops, 2 sqrt, 4 div.
+/// Cost: ~45 flops, ~12 selects, 2 sqrt, 4 div (+ 1 div, 1 sqrt for |f| < 2^-30; + 1 sqrt for
+/// h² <= RK_FLT_MIN).
 RK_INLINE vec2 rk_ray_sphere(vec3 o, vec3 d, vec3 c, float r)
 {
     vec3 ne;
@@ -189,7 +241,10 @@ RK_INLINE vec2 rk_ray_sphere(vec3 o, vec3 d, vec3 c, float r)
 /// Max error (10^7 random rays, radii in [0.1, 10], |o - c| up to 100 max radius): that of
 /// rk_ray_sphere in the scaled space: |Δt| |d'| <= 2.0 ε (|o' - c'| + |t| |d'| + 1) (1 + 1 / h'),
 /// ε = 2^-24, primes in the unit sphere's space ((o - c) / radii, d / radii; h' the half-chord
-/// there). Cost: rk_ray_sphere's + 9 div (+ 2 normalisations for the normals).
+/// there). A flat ellipsoid (q up to 2^254) is cast with the position (r_min < 2^-60, |o - c| <
+/// 2^60) and the direction (|d| < 2^60) scaled by 2^64 first, and its normals taken as
+/// (2^100 n_sphere) / q, so that no scaled component is denormal (exact powers of two: the same bits
+/// where none was). Cost: rk_ray_sphere's + 9 div + ~6 flops (+ 2 normalisations for the normals).
 RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_OUT(vec3) n_enter, RK_OUT(vec3) n_exit)
 {
     vec3 rad = max(abs(radii), vec3(RK_FLT_MIN));
@@ -197,14 +252,27 @@ RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_O
     vec3 q = min(rad / rmin, vec3(RK_FLT_MAX));  // >= 1
     vec3 ne;
     vec3 nx;
-    vec2 t = rk_ray_sphere_core_(rk_ray_clamp3_(o - c) / q, d / q, rmin, ne, nx);
-    // The gradient of |(p - c) / radii|² is parallel to n_sphere / q (each at most 1, finite).
-    n_enter = rk_normalize_safe(ne / q, vec3(0.0f));
-    n_exit = rk_normalize_safe(nx / q, vec3(0.0f));
+    // A flat ellipsoid's q reaches 2^254, which leaves w / q and d / q denormal (a flushing GPU then
+    // saw a disc of radius 3 as an infinite slab). The position is scaled by 2^64 first where it
+    // cannot overflow and r_min < 2^-60, the direction where |d| < 2^60 (t rescaled after): exact
+    // powers of two, which change no bit of an unscaled result.
+    vec3 w = rk_ray_clamp3_(o - c);
+    float sw = rk_ray_maxabs_(w) < 1.1529215e18f && rmin < 8.67361738e-19f ? 1.84467441e19f : 1.0f;
+    bool sd = rk_ray_maxabs_(d) < 1.1529215e18f;
+    vec2 t = rk_ray_sphere_core_((w * sw) / q, (sd ? d * 1.84467441e19f : d) / q, rmin * sw, ne, nx);
+    // t in units of d: times 2^64 for the direction's scale, over 2^64 for the position's; ±RK_FLT_MAX
+    // (a miss, an unbounded or a clamped end) stays.
+    float ts = sd ? (sw > 1.0f ? 1.0f : 1.84467441e19f) : (sw > 1.0f ? 5.42101086e-20f : 1.0f);
+    t = vec2(abs(t.x) >= RK_FLT_MAX ? t.x : t.x * ts, abs(t.y) >= RK_FLT_MAX ? t.y : t.y * ts);
+    t = clamp(t, vec2(-RK_FLT_MAX), vec2(RK_FLT_MAX));
+    // The gradient of |(p - c) / radii|² is parallel to n_sphere / q (each at most 1, finite), taken
+    // as (2^100 n_sphere) / q so that a component over q up to 2^226 stays normal.
+    n_enter = rk_normalize_safe((ne * 1.2676506e30f) / q, vec3(0.0f));
+    n_exit = rk_normalize_safe((nx * 1.2676506e30f) / q, vec3(0.0f));
     return t;
 }
 
-/// rk_ray_ellipsoid: rk_ray_ellipsoid_normals without the normals. Cost: rk_ray_sphere's + 9 div.
+/// rk_ray_ellipsoid: rk_ray_ellipsoid_normals without the normals. Cost: rk_ray_sphere's + 9 div + ~6 flops.
 RK_INLINE vec2 rk_ray_ellipsoid(vec3 o, vec3 d, vec3 c, vec3 radii)
 {
     vec3 ne;
@@ -270,11 +338,14 @@ RK_INLINE uint rk_ray_box_axis_(vec3 tv, vec3 ad, bool smallest)
 /// and, instead of 1 / d_i = ±Inf (Williams et al.'s IEEE trick, which gives 0 * Inf = NaN for an
 /// origin on that slab's plane), bounds nothing when lo_i <= o_i <= hi_i and misses otherwise.
 /// An origin on a face, edge or corner is inside (t_enter <= 0 <= t_exit, t = ±0 exactly there).
+/// A per-axis crossing with |t| <= RK_FLT_MIN is t = 0 in both builds (a GPU that flushes denormals
+/// stores it as ±0; ordering the CPU's denormal against it picked other faces, or a miss).
 /// Domain: any finite inputs. Max error (against long double; 10^7 random rays with boxes and
 /// origins within 1e3, 10^7 within 1e6, some on faces and edges, direction components 0, -0,
 /// 1e-30, -1e-40): |Δt| <= 2 ε |t|, ε = 2^-24 (1.99 ε measured; in the CPU build provably: the
 /// subtraction and the division each round once, to half an ulp; GLSL allows its division 2.5
-/// ulps), and t = 0 exactly when o is on the plane. Cost: 6 div, ~24 flops and selects.
+/// ulps) for |t| > RK_FLT_MIN, and t = 0 exactly when o is on the plane (or |t| <= RK_FLT_MIN).
+/// Cost: 6 div, ~30 flops and selects.
 RK_INLINE vec2 rk_ray_box_normals(vec3 o, vec3 d, vec3 lo, vec3 hi, RK_OUT(vec3) n_enter, RK_OUT(vec3) n_exit)
 {
     n_enter = vec3(0.0f);
@@ -293,6 +364,10 @@ RK_INLINE vec2 rk_ray_box_normals(vec3 o, vec3 d, vec3 lo, vec3 hi, RK_OUT(vec3)
     // Quotients may overflow to ±Inf (finite / tiny); clamped. No 0 * Inf, so never NaN.
     vec3 ta = rk_ray_clamp3_(ga / dd);
     vec3 tb = rk_ray_clamp3_(gb / dd);
+    // A crossing with |t| < RK_FLT_MIN is t = 0 in both builds (a flushing GPU stores it as ±0, and
+    // the comparisons below would otherwise order it differently from the CPU's denormal).
+    ta = vec3(abs(ta.x) <= RK_FLT_MIN ? 0.0f : ta.x, abs(ta.y) <= RK_FLT_MIN ? 0.0f : ta.y, abs(ta.z) <= RK_FLT_MIN ? 0.0f : ta.z);
+    tb = vec3(abs(tb.x) <= RK_FLT_MIN ? 0.0f : tb.x, abs(tb.y) <= RK_FLT_MIN ? 0.0f : tb.y, abs(tb.z) <= RK_FLT_MIN ? 0.0f : tb.z);
     vec3 tn = min(ta, tb);
     vec3 tf = max(ta, tb);
     tn = vec3(par.x ? -RK_FLT_MAX : tn.x, par.y ? -RK_FLT_MAX : tn.y, par.z ? -RK_FLT_MAX : tn.z);
@@ -312,7 +387,7 @@ RK_INLINE vec2 rk_ray_box_normals(vec3 o, vec3 d, vec3 lo, vec3 hi, RK_OUT(vec3)
 }
 
 /// rk_ray_box: rk_ray_box_normals without the normals. Max error: the same (|Δt| <= 2 ε |t|).
-/// Cost: 6 div, ~20 flops.
+/// Cost: 6 div, ~26 flops.
 RK_INLINE vec2 rk_ray_box(vec3 o, vec3 d, vec3 lo, vec3 hi)
 {
     vec3 ne;
@@ -368,14 +443,19 @@ RK_INLINE bool rk_ray_impostor_finish_(vec3 o, vec3 d, vec2 t, vec3 ne, vec3 nx,
 /// depth within 0.6 ε (ε = 2^-24) of the float64 projection of the exact hit through each
 /// convention's matrix (OpenGL, Vulkan, reversed-Z finite and infinite; a sphere 5 units away seen
 /// through 4096 pixels: tests/test_ray.cpp, where rk_svo_window_depth through the float matrix gives
-/// 1.7 ε). Cost: rk_ray_sphere_normals' + 1 fma + 2 div.
+/// 1.7 ε). A direction above 2^100 is scaled by 2^-100 first (exact), so that t (about distance /
+/// |d|) is not denormal, which a flushing GPU read as 0 (p = o). Cost: rk_ray_sphere_normals' +
+/// 1 fma + 2 div + 4 flops.
 RK_INLINE bool rk_ray_impostor_sphere(vec3 o, vec3 d, vec3 c, float r, vec3 k, RK_OUT(vec3) p, RK_OUT(vec3) n,
                                       RK_OUT(float) depth)
 {
     vec3 ne;
     vec3 nx;
-    vec2 t = rk_ray_sphere_normals(o, d, c, r, ne, nx);
-    return rk_ray_impostor_finish_(o, d, t, ne, nx, k, p, n, depth);
+    // A direction above 2^100 is scaled by 2^-100 first (exact; t scales by 2^100): its t, of the
+    // order of distance / |d|, would otherwise be denormal, and t d lost on a flushing GPU.
+    vec3 dd = rk_ray_maxabs_(d) > 1.2676506e30f ? d * 7.8886091e-31f : d;
+    vec2 t = rk_ray_sphere_normals(o, dd, c, r, ne, nx);
+    return rk_ray_impostor_finish_(o, dd, t, ne, nx, k, p, n, depth);
 }
 
 /// rk_ray_impostor_box: as rk_ray_impostor_sphere for an oriented box in view space: the points
