@@ -4,6 +4,7 @@
 // case's relative tolerance.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,10 @@ namespace dom = parity::dom;
     o[10] = h.uv_dx.y; o[11] = h.uv_dy.x; o[12] = h.uv_dy.y; o[13] = h.pos.x; o[14] = h.pos.y; o[15] = h.pos.z; \
     o[16] = h.valid ? 1.0f : 0.0f;
 // The inputs of a trace row: raw (every adversarial value reaches the function) or structured
-// (clamped to a scene-like range, then on-grid facades, parallel rays, grazing cameras).
+// (clamped to a scene-like range, then on-grid facades, parallel rays, grazing cameras). The
+// on-grid snap goes through rk_im_grid_coord, whose subnormal coordinates are 0 on every build: a
+// floor of (p - origin) / size computed here directly would put a point 1e-38 below the origin in
+// another room on a flushing driver than on the CPU, before the trace even starts.
 #define RK_TRACE_RAW                                                                                          \
     rk_im_grid g; g.room_size = vec3(a[9], a[10], a[11]); g.origin = vec3(a[12], a[13], a[14]);              \
     vec3 p = vec3(a[0], a[1], a[2]); vec3 cam = vec3(a[3], a[4], a[5]); vec3 n = vec3(a[6], a[7], a[8]);
@@ -45,11 +49,11 @@ namespace dom = parity::dom;
     vec3 cam = clamp(vec3(a[3], a[4], a[5]), vec3(-100.0f), vec3(100.0f));                                  \
     vec3 n = vec3(0.0f, 0.0f, 1.0f);                                                                          \
     float rk_mode = clamp(a[15], 0.0f, 1.0f);                                                                    \
-    if (rk_mode < 0.5f) p.z = g.origin.z + floor((p.z - g.origin.z) / g.room_size.z) * g.room_size.z;           \
+    if (rk_mode < 0.5f) p.z = g.origin.z + floor(rk_im_grid_coord(p, g).z) * g.room_size.z;                    \
     cam.z = p.z + abs(cam.z) * (rk_mode > 0.9f ? 1e-4f : 1.0f) + 1e-3f;                                          \
     if (rk_mode > 0.3f && rk_mode < 0.6f) cam.x = p.x;                                                              \
     if (rk_mode > 0.45f && rk_mode < 0.7f) cam.y = p.y;                                                             \
-    if (rk_mode > 0.7f && rk_mode < 0.8f) p.x = g.origin.x + floor((p.x - g.origin.x) / g.room_size.x) * g.room_size.x; \
+    if (rk_mode > 0.7f && rk_mode < 0.8f) p.x = g.origin.x + floor(rk_im_grid_coord(p, g).x) * g.room_size.x;         \
     vec3 dpx = clamp(vec3(a[16], a[17], 0.0f), vec3(-0.1f), vec3(0.1f));                                    \
     vec3 dpy = clamp(vec3(a[18], a[19], 0.0f), vec3(-0.1f), vec3(0.1f));
 
@@ -141,25 +145,26 @@ std::vector<Entry> interior_cases()
 
     // The traces. "raw": every adversarial value (1e30, -3.4e38, denormals, zero normals...)
     // reaches the function; outside the documented exact domain (|grid coordinate| >= 2^22 rooms)
-    // only finiteness is promised, so these rows are checked for finite GPU outputs only.
+    // only finiteness is promised, so these rows are checked for finite GPU outputs only (an
+    // infinite tolerance: 3e38 was not, as values of opposite signs near FLT_MAX differ by more).
     // "domain": the same rows clamped into the exact domain, every field compared. "scene":
     // building-like rays: on-grid facades, parallel rays, cameras 1e-3 from the facade.
     parity::Case c;
     c = RK_PARITY_X("rk_im_trace raw (finite)", I, (Domain{}), 17, RK_TRACE_RAW rk_im_hit h = rk_im_trace(p, cam, n, g); RK_EMIT_HIT(h));
     c.inputs = trace_domains(false);
-    c.abs_tol = 3e38;
+    c.abs_tol = std::numeric_limits<double>::infinity();
     e.push_back({c, {}});
     c = RK_PARITY_X("rk_im_trace_grad raw (finite)", I, (Domain{}), 17,
                     RK_TRACE_RAW_GRAD rk_im_hit h = rk_im_trace_grad(p, cam, n, dpx, dpy, g); RK_EMIT_HIT(h));
     c.inputs = trace_domains(false);
-    c.abs_tol = 3e38;
+    c.abs_tol = std::numeric_limits<double>::infinity();
     e.push_back({c, {}});
     c = RK_PARITY_X("rk_im_trace_varying_grad raw (finite)", I, (Domain{}), 17,
                     RK_TRACE_RAW_GRAD rk_im_hit h = rk_im_trace_varying_grad(p, cam, n, dpx, dpy, g, vec3(a[21], a[22], a[23]),
                                                                               RK_KEY(24, 25));
                     RK_EMIT_HIT(h));
     c.inputs = trace_domains(false);
-    c.abs_tol = 3e38;
+    c.abs_tol = std::numeric_limits<double>::infinity();
     e.push_back({c, {}});
     c = RK_PARITY_X("rk_im_trace domain", I, (Domain{}), 17, RK_TRACE_DOMAIN o[0] = dpx.x + dpy.x; /* unused here */ rk_im_hit h = rk_im_trace(p, cam, n, g); RK_EMIT_HIT(h));
     c.inputs = trace_domains(false);
