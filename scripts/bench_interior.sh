@@ -62,21 +62,8 @@ GLSLANG="$(command -v glslangValidator || true)"
 SPIRV_OPT="$(command -v spirv-opt || true)"
 SPIRV_DIS="$(command -v spirv-dis || true)"
 COUNTS="$OUT/spirv_counts.md"
-count_spirv() {   # $1 = disassembly file
-  awk '
-    /^[[:space:]]*(%[^ ]+ = )?Op/ { module++ }
-    { line = $0; sub(/^[[:space:]]*%[^ ]+ = /, "", line); sub(/^[[:space:]]+/, "", line); split(line, w, " "); op = w[1] }
-    op == "OpFunction" { inside = 1; next }
-    op == "OpFunctionEnd" { inside = 0; next }
-    inside && op ~ /^Op/ {
-      if (op ~ /^(OpLabel|OpFunctionParameter|OpLine|OpNoLine|OpSelectionMerge|OpLoopMerge)$/) next
-      body++
-      if (op ~ /^(OpImageSample|OpImageFetch|OpImageGather|OpImageQuery)/) tex++
-      if (op ~ /^(OpBranchConditional|OpSwitch)$/) cond++
-      if (op !~ /^(OpLoad|OpStore|OpAccessChain|OpInBoundsAccessChain|OpVectorShuffle|OpCompositeConstruct|OpCompositeExtract|OpCompositeInsert|OpCopyObject|OpUndef|OpSampledImage|OpBranch|OpReturn|OpReturnValue|OpKill|OpPhi|OpImageSample.*|OpImageFetch|OpImageGather|OpImageQuery.*|OpBranchConditional|OpSwitch)$/) alu++
-    }
-    END { printf "%d %d %d %d %d\n", body, alu, tex + 0, cond + 0, module }' "$1"
-}
+# count_spirv: scripts/spirv_count.sh (shared with scripts/im_trace_spirv.sh).
+source scripts/spirv_count.sh  # (the working directory is the repository root)
 if [[ -n "$GLSLANG" && -n "$SPIRV_DIS" ]]; then
   {
     echo "| material | body | alu | tex | cond | module | body (unoptimised) |"

@@ -79,10 +79,12 @@
 // COST: the trace is straight-line vec3 code with selects, no branches. SPIR-V instructions in
 // function bodies (glslangValidator -G, spirv-opt -O; the counting rule of
 // scripts/bench_interior.sh) of a fragment shader that calls the trace and writes uv, uv_dx,
-// uv_dy, family, side, room and valid: rk_im_trace_grad 166 (107 ALU), rk_im_trace 121,
-// rk_im_trace_varying_grad 249 (before the vectorised rewrite: 293 / 204 / 571, with 23 to 26
-// conditional branches). Divisions: rk_im_trace_grad 10 scalar (grid coordinates 3, the room-size
-// reciprocal 3, the direction reciprocal per axis 3, normal scale 1), was 32.
+// uv_dy, family, side, room and valid (scripts/im_trace_spirv.sh): rk_im_trace_grad 184 (118
+// ALU), rk_im_trace 138, rk_im_trace_varying_grad 269. The facing test and grid coordinates that
+// agree with GPUs flushing subnormals cost 20 to 22 of them (164 / 118 / 247 before, same
+// script); before the vectorised rewrite: 293 / 204 / 571, with 23 to 26 conditional branches.
+// Divisions: rk_im_trace_grad 11 scalar (grid coordinates 3, the room-size reciprocal 3, the
+// direction reciprocal per axis 3, normal and p - cam scales 1 each), was 32.
 //
 // @rk-es 310
 // @rk-es300
@@ -172,8 +174,7 @@ RK_INLINE vec3 rk_im_grid_coord(vec3 x, rk_im_grid g)
 {
     vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
     vec3 q = clamp((x - g.origin) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
-    return vec3(abs(q.x) < RK_FLT_MIN ? 0.0f : q.x, abs(q.y) < RK_FLT_MIN ? 0.0f : q.y,
-                abs(q.z) < RK_FLT_MIN ? 0.0f : q.z);
+    return mix(q, vec3(0.0f), lessThan(abs(q), vec3(RK_FLT_MIN)));
 }
 
 /// rk_im_room_at: the grid cell containing the object-space point p: floor of its grid
@@ -438,10 +439,10 @@ RK_INLINE rk_im_hit rk_im_detail_trace_varying(vec3 p, vec3 cam, vec3 n, vec3 dp
 /// analytic derivatives within 1.2e-6 relative of finite differences. GPU parity (llvmpipe,
 /// tests/gpu/parity_interior.cpp): family, side, room and valid bit-identical; t, uv and pos
 /// within 1 ulp on the exact domain; on grazing scene rays, whose derivatives reach 1e6, within
-/// 1e-4 relative (up to 1.5e3 ulp, 1e-3 absolute). Cost: 10 scalar divisions (3 grid coordinates, 3 room-size reciprocals, 3 direction
-/// reciprocals reused by the plane distances and the derivatives, 1 normal scale), about 250
-/// scalar ALU ops, all selects (no branches), no loops, no texture; constant whatever the number
-/// of rooms. SPIR-V (spirv-opt -O): 166 instructions with every field used.
+/// 1e-4 relative (up to 1.5e3 ulp, 1e-3 absolute). Cost: 11 scalar divisions (3 grid
+/// coordinates, 3 room-size reciprocals, 3 direction reciprocals reused by the plane distances and
+/// the derivatives, the normal's and p - cam's scales), about 270 scalar ALU ops, all selects (no branches), no loops, no texture; constant whatever the number
+/// of rooms. SPIR-V (spirv-opt -O): 184 instructions with every field used.
 RK_INLINE rk_im_hit rk_im_trace_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, rk_im_grid g)
 {
     return rk_im_detail_trace(p, cam, n, dp_dx, dp_dy, true, g);
@@ -451,7 +452,7 @@ RK_INLINE rk_im_hit rk_im_trace_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 
 /// Use with textureLod or when the interior is not mip-mapped. Domain, edge cases and max error:
 /// those of rk_im_trace_grad; every other field is bit-identical to it (tests/
 /// test_interior_mapping.cpp TraceWithoutDerivativesIsTheGradTrace). Cost: rk_im_trace_grad less
-/// the derivative work: 121 SPIR-V instructions (spirv-opt -O), 10 scalar divisions.
+/// the derivative work: 138 SPIR-V instructions (spirv-opt -O), 11 scalar divisions.
 RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 {
     return rk_im_detail_trace(p, cam, n, vec3(0.0f), vec3(0.0f), false, g);
@@ -471,7 +472,7 @@ RK_INLINE rk_im_hit rk_im_trace(vec3 p, vec3 cam, vec3 n, rk_im_grid g)
 /// rk_im_trace_grad + 12 single-word hashes as 4 uvec3 hashes (the 3 keys, walls m - 1, m, m + 1:
 /// hashing both neighbours keeps the hashes independent, which is faster on latency-bound SIMD
 /// such as llvmpipe than hashing only the needed one after the test) and 3 divisions (the room
-/// widths). SPIR-V (spirv-opt -O): 249 instructions.
+/// widths). SPIR-V (spirv-opt -O): 269 instructions.
 RK_INLINE rk_im_hit rk_im_trace_varying_grad(vec3 p, vec3 cam, vec3 n, vec3 dp_dx, vec3 dp_dy, rk_im_grid g,
                                              vec3 jitter, uint seed)
 {
