@@ -1119,8 +1119,8 @@ def svo_trace_summary(out_dir):
     """Octree ray casting: the CPU throughput summary quoted from benchmarks_trace.md (written by
     scripts/bench_trace_report.py) and the driver frame-time page (benchmarks_svo_gl.md)."""
     md = ["## Octree ray casting: CPU throughput against Embree and OpenVDB, frame time on the driver", ""]
-    md.append("`rk_svo_trace` (the C++ build of `svo_traverse.glsl`) and `svo_trace_rays` (its loop on 8 AVX2 "
-              "lanes, the same answers bit for bit) against Embree on the source triangles and "
+    md.append("`rk_svo_trace` (the C++ build of `svo_traverse.glsl`), `svo_trace_rays` (its loop on 8 AVX2 "
+              "lanes, the same answers bit for bit) and `svo_trace_packets` (8-ray tiles sharing one traversal) against Embree on the source triangles and "
               "OpenVDB's level-set ray intersector, 512x512 primary rays, single thread "
               "([benchmarks_trace.md](benchmarks_trace.md), `bash scripts/bench_trace.sh`; every depth 8-12, "
               "2 threads, build times, hit agreement). Issue 11's goals: at least 5x OpenVDB and at least "
@@ -1133,20 +1133,20 @@ def svo_trace_summary(out_dir):
     else:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
-        table = ["| mesh | Embree Mrays/s | OpenVDB d10 | raykit d10 | raykit SIMD d10 | best / OpenVDB | best / Embree |",
-                 "|---|---:|---:|---:|---:|---:|---:|"]
-        mesh, e, v, r, rs = None, None, None, None, None
+        table = ["| mesh | Embree Mrays/s | OpenVDB d10 | raykit d10 | raykit SIMD d10 | raykit packets d10 | best / OpenVDB | best / Embree |",
+                 "|---|---:|---:|---:|---:|---:|---:|---:|"]
+        mesh, e, v, r, rs, rp = None, None, None, None, None, None
 
         def flush():
             if mesh and e and r:
-                best = max(float(r), float(rs)) if rs else float(r)
+                best = max([float(r)] + [float(x) for x in (rs, rp) if x])
                 rv = f"{best / float(v):.2f}" if v else "-"
-                table.append(f"| {mesh} | {e} | {v or '-'} | {r} | {rs or '-'} | {rv} | {best / float(e):.2f} |")
+                table.append(f"| {mesh} | {e} | {v or '-'} | {r} | {rs or '-'} | {rp or '-'} | {rv} | {best / float(e):.2f} |")
 
         for l in lines:
             if l.startswith("## "):
                 flush()
-                mesh, e, v, r, rs = l[3:].strip(), None, None, None, None
+                mesh, e, v, r, rs, rp = l[3:].strip(), None, None, None, None, None
             cells = [c.strip() for c in l.strip().strip("|").split("|")] if l.startswith("|") else []
             if len(cells) > 3:
                 if cells[0] == "Embree":
@@ -1157,6 +1157,8 @@ def svo_trace_summary(out_dir):
                     r = cells[2]
                 elif cells[0] == "raykit SIMD" and cells[1] == "10":
                     rs = cells[2]
+                elif cells[0] == "raykit packets" and cells[1] == "10":
+                    rp = cells[2]
         flush()
         md.extend(table)
         md.append("")

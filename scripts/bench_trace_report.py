@@ -56,6 +56,9 @@ def main():
         "- **raykit SIMD**: `svo_trace_rays` (`raykit/svo_trace_simd.hpp`) on the same tree and rays: the same "
         "set-up and hit, the loop on 8 AVX2 lanes, answers bit for bit rk_svo_trace's (test_svo_trace_simd); "
         "each call traces one chunk of 4 rows (2,048 rays), copying them in and the distances out.\n"
+        "- **raykit packets**: `svo_trace_packets` (`raykit/svo_trace_packet.hpp`) on the same tree and rays: "
+        "4x2 pixel tiles of 8 rays sharing one traversal on AVX2 lanes, answers rk_svo_trace's except at exact "
+        "lattice ties (test_svo_trace_packet); the same chunks.\n"
         "- **Embree**: `rtcIntersect1` per ray on the source triangles (BVH quality high).\n"
         "- **OpenVDB**: `LevelSetRayIntersector` on `meshToLevelSet` at the same voxel size (half-width 3).\n")
     out.append(
@@ -75,7 +78,7 @@ def main():
             out.append(f"| Embree | — | {fmt(e1)} | {fmt(mr(mesh, 'embree', -1, 2))} | {b['build_ms']:.0f} | | | | | |")
         depths = sorted({k[2] for k in rows if k[0] == mesh and k[2] >= 0})
         for d in depths:
-            for tracer in ("openvdb", "raykit", "raykit_simd"):
+            for tracer in ("openvdb", "raykit", "raykit_simd", "raykit_packet"):
                 b = rows.get((mesh, tracer, d, 1))
                 if not b:
                     continue
@@ -87,7 +90,7 @@ def main():
                 hits = f"{b.get('hit_diff_pct', 0):+.2f} %" if "hit_diff_pct" in b else ""
                 dt = f"{b.get('dt_vox', 0):+.2f}" if "dt_vox" in b else ""
                 bpv = fmt(b.get("bytes_per_voxel"), 3) if ours else ""
-                name = {"raykit": "raykit", "raykit_simd": "raykit SIMD"}.get(tracer, "OpenVDB")
+                name = {"raykit": "raykit", "raykit_simd": "raykit SIMD", "raykit_packet": "raykit packets"}.get(tracer, "OpenVDB")
                 out.append(f"| {name} | {d} | {fmt(r1)} | {fmt(mr(mesh, tracer, d, 2))} | {b['build_ms']:.0f} | {ratio_vdb} | {ratio_e} | {hits} | {dt} | {bpv} |")
     out.append("\n![Mrays/s by depth, single thread](img/bench_trace_mrays.png)\n")
 
@@ -96,14 +99,15 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         plots = []
         for i, mesh in enumerate(meshes):
-            for tracer in ("raykit", "raykit_simd", "openvdb"):
+            for tracer in ("raykit", "raykit_simd", "raykit_packet", "openvdb"):
                 if not any(k[0] == mesh and k[1] == tracer for k in rows):
                     continue
                 path = os.path.join(tmp, f"{mesh}_{tracer}.dat")
                 with open(path, "w") as f:
                     for d in sorted({k[2] for k in rows if k[0] == mesh and k[1] == tracer and k[2] >= 0}):
                         f.write(f"{d} {mr(mesh, tracer, d, 1)}\n")
-                style = {"raykit": "linespoints lw 2 pt 7", "raykit_simd": "linespoints lw 2 dt 3 pt 5"}.get(tracer, "points pt 4 ps 1.5")
+                style = {"raykit": "linespoints lw 2 pt 7", "raykit_simd": "linespoints lw 2 dt 3 pt 5",
+                         "raykit_packet": "linespoints lw 2 dt 4 pt 9"}.get(tracer, "points pt 4 ps 1.5")
                 plots.append(f"'{path}' using 1:2 with {style} lc {i + 1} title '{mesh} {tracer}'")
             e1 = mr(mesh, "embree", -1, 1)
             if e1:

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "raykit/svo_build.hpp"
+#include "raykit/svo_trace_packet.hpp"
 #include "raykit/svo_trace_simd.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "trace_harness.hpp"
@@ -18,7 +19,7 @@ struct Tree {
     raykit::rk_svo_tree uniforms;
 };
 
-Prepared prepare(const Scene& s, int depth, bool simd)
+Prepared prepare(const Scene& s, int depth, int mode)
 {
     Prepared p;
     auto t = std::make_shared<Tree>();
@@ -35,7 +36,7 @@ Prepared prepare(const Scene& s, int depth, bool simd)
     p.counters.push_back({"bytes_per_voxel", double(t->tree.structure_bytes()) / double(t->tree.voxel_count)});
     p.keep = t;
     const Tree* tp = t.get();
-    if (!simd) {
+    if (mode == 0) {
         p.make_thread = [tp] {
             return per_ray([tp](const Ray& r) {
                 const raykit::rk_svo_trace_hit h =
@@ -47,6 +48,25 @@ Prepared prepare(const Scene& s, int depth, bool simd)
     }
     if (!raykit::svo_trace_simd_available()) {
         p.skip = "this CPU has no AVX2: svo_trace_rays would be the per-ray rows again";
+        return p;
+    }
+    if (mode == 2) {
+        // svo_trace_packets over each chunk of rows: 4 x 2 pixel tiles, 8 rays per traversal.
+        const std::size_t width = static_cast<std::size_t>(s.camera.width);
+        p.make_thread = [tp, width]() -> SpanTracer {
+            auto in = std::make_shared<std::vector<raykit::SvoRay>>();
+            auto out = std::make_shared<std::vector<raykit::rk_svo_trace_hit>>();
+            return [tp, in, out, width](const Ray* rays, std::size_t n, float* t_out) {
+                in->resize(n);
+                out->resize(n);
+                for (std::size_t i = 0; i < n; ++i) {
+                    (*in)[i].origin = rays[i].org;
+                    (*in)[i].dir = rays[i].dir;
+                }
+                raykit::svo_trace_packets(tp->words.data(), tp->uniforms, in->data(), n, width, out->data());
+                for (std::size_t i = 0; i < n; ++i) t_out[i] = (*out)[i].hit ? (*out)[i].t : kMiss;
+            };
+        };
         return p;
     }
     // svo_trace_rays over each chunk of rows: the rays copied into its input and the hits out of its
@@ -76,12 +96,18 @@ Prepared prepare(const Scene& s, int depth, bool simd)
 // surfaces cannot pass the smoke test.
 const TracerRegistrar reg(TracerSpec{"raykit", "raykit rk_svo_trace (C++ build of svo_traverse.glsl), geometry only", 30, true,
                                      {8, 9, 10, 11, 12}, false,
-                                     [](const Scene& s, int depth) { return prepare(s, depth, false); }, 50.0, 2.0, -3.0});
+                                     [](const Scene& s, int depth) { return prepare(s, depth, 0); }, 50.0, 2.0, -3.0});
 // The same rays through svo_trace_rays (raykit/svo_trace_simd.hpp): the loop on 8 AVX2 lanes, the
 // answers bit for bit rk_svo_trace's (test_svo_trace_simd).
 const TracerRegistrar reg_simd(TracerSpec{"raykit_simd", "raykit svo_trace_rays (rk_svo_trace's loop on 8 AVX2 lanes), geometry only",
                                           31, true, {8, 9, 10, 11, 12}, false,
-                                          [](const Scene& s, int depth) { return prepare(s, depth, true); }, 50.0, 2.0, -3.0});
+                                          [](const Scene& s, int depth) { return prepare(s, depth, 1); }, 50.0, 2.0, -3.0});
+
+// 8 coherent rays (4 x 2 pixel tiles) sharing one traversal (raykit/svo_trace_packet.hpp):
+// the answers are rk_svo_trace's (test_svo_trace_packet).
+const TracerRegistrar reg_packet(TracerSpec{"raykit_packet", "raykit svo_trace_packets (4x2 ray packets, one traversal on AVX2 lanes), geometry only",
+                                            32, true, {8, 9, 10, 11, 12}, false,
+                                            [](const Scene& s, int depth) { return prepare(s, depth, 2); }, 50.0, 2.0, -3.0});
 
 }  // namespace
 }  // namespace rktrace
