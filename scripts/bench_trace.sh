@@ -19,7 +19,7 @@ bash scripts/setup.sh libembree-dev libopenvdb-dev libboost-iostreams-dev
 
 build="${RAYKIT_BENCH_BUILD_DIR:-build}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DRAYKIT_BUILD_BENCH=ON -DRAYKIT_BUILD_BENCH_TRACE=ON
-cmake --build "$build" --target raykit_bench_trace raykit_svo_simd_ab raykit_svo_packet_ab -j2
+cmake --build "$build" --target raykit_bench_trace raykit_svo_packet_ab -j2
 
 exe="$build/bench/trace/raykit_bench_trace"
 rows="$("$exe" --benchmark_list_tests)"
@@ -28,9 +28,7 @@ for peer in embree openvdb; do
 done
 
 "$exe" --benchmark_out_format=json --benchmark_out="$build/bench_trace.json" "$@"
-# svo_trace_rays against rk_svo_trace, paired in one process (the ratio the docs quote).
-"$build/bench/trace/raykit_svo_simd_ab"
-# svo_trace_packets (8-ray packets) against rk_svo_trace and svo_trace_rays, paired in one process,
-# at depths 8, 10 and 12 (the ratios docs/svo-traverse.md quotes).
+# rk_svo_trace, svo_trace_rays and svo_trace_packets paired in one process at depths 8, 10 and 12
+# (the ratios docs/svo-traverse.md quotes).
 for d in 8 10 12; do "$build/bench/trace/raykit_svo_packet_ab" "$d" 11; done
 echo "bench_trace: results in $build/bench_trace.json (load average after the run: $(cut -d' ' -f1-3 /proc/loadavg))"
