@@ -98,6 +98,11 @@ RK_INLINE float rk_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
 /// denormals give a large finite value instead of inf. Cost: 1 max + 1 div.
 RK_INLINE float rk_safe_rcp_pos(float x) { return 1.0f / max(x, RK_FLT_MIN); }
 
+/// rk_flush_subnormal: v with each component below RK_FLT_MIN in magnitude (subnormal, or ±0) made
+/// +0, as a GPU that flushes subnormals stores it, so that what follows decides alike on every
+/// backend. NaN passes unchanged. Exact. Cost: 1 abs, 1 compare, 1 select (vec3).
+RK_INLINE vec3 rk_flush_subnormal(vec3 v) { return mix(v, vec3(0.0f), lessThan(abs(v), vec3(RK_FLT_MIN))); }
+
 /// rk_normalize_safe: v / |v|, scaled by its largest component first so that neither the squares
 /// overflow nor denormals lose their direction; a zero or all-denormal vector, or one with a NaN or
 /// infinite component, gives `fallback`. Max error: 3.5 ulp per component of a unit result.

@@ -59,9 +59,7 @@ RK_INLINE vec3 rk_envmap_normalize(vec3 v, vec3 fallback)
     }
     float pre = m > 1.0e30f ? 7.8886090522101181e-31f : 1.0f;
     vec3 q = (v * pre) / (m * pre);
-    vec3 r = q * inversesqrt(dot(q, q));
-    return vec3(abs(r.x) < RK_FLT_MIN ? 0.0f : r.x, abs(r.y) < RK_FLT_MIN ? 0.0f : r.y,
-                abs(r.z) < RK_FLT_MIN ? 0.0f : r.z);
+    return rk_flush_subnormal(q * inversesqrt(dot(q, q)));
 }
 
 /// rk_envmap_angle: the angle in [0, π] radians whose cosine is cos_nr (clamped to [-1, 1]),

@@ -174,7 +174,7 @@ RK_INLINE vec3 rk_im_grid_coord(vec3 x, rk_im_grid g)
 {
     vec3 rs = clamp(abs(g.room_size), vec3(RK_IM_ROOM_MIN), vec3(RK_IM_ROOM_MAX));
     vec3 q = clamp((x - g.origin) / rs, vec3(-RK_IM_GRID_MAX), vec3(RK_IM_GRID_MAX));
-    return mix(q, vec3(0.0f), lessThan(abs(q), vec3(RK_FLT_MIN)));
+    return rk_flush_subnormal(q);
 }
 
 /// rk_im_room_at: the grid cell containing the object-space point p: floor of its grid

@@ -87,19 +87,16 @@ RK_INLINE float rk_paraboloid_prescale(float m) { return m > 1.0e30f ? 7.8886090
 /// Cost: 7 max/abs, 6 select, 1 div, 1 dot, 1 rsqrt.
 RK_INLINE vec3 rk_paraboloid_normalize(vec3 v, vec3 fallback)
 {
-    vec3 w = vec3(abs(v.x) < RK_FLT_MIN ? 0.0f : v.x, abs(v.y) < RK_FLT_MIN ? 0.0f : v.y,
-                  abs(v.z) < RK_FLT_MIN ? 0.0f : v.z);
+    vec3 w = rk_flush_subnormal(v);
     float m = rk_paraboloid_max_abs(w);
     if (m < RK_FLT_MIN) {
         return fallback;
     }
     float pre = rk_paraboloid_prescale(m);
     vec3 q = (w * pre) / (m * pre);  // largest component +-1, dot(q, q) in [1, 3]
-    vec3 r = q * inversesqrt(dot(q, q));
     // Result components below RK_FLT_MIN (from one much smaller than the largest) are 0 too: a GPU
     // flushes them, and a frame or a seam weight built on them would differ.
-    return vec3(abs(r.x) < RK_FLT_MIN ? 0.0f : r.x, abs(r.y) < RK_FLT_MIN ? 0.0f : r.y,
-                abs(r.z) < RK_FLT_MIN ? 0.0f : r.z);
+    return rk_flush_subnormal(q * inversesqrt(dot(q, q)));
 }
 
 /// rk_paraboloid_encode: paraboloid coordinates st = (x, y) / (1 + hemi z) of the direction `dir`
@@ -151,8 +148,7 @@ RK_INLINE vec3 rk_paraboloid_decode(vec2 st, float hemi)
 RK_INLINE vec2 rk_paraboloid_encode_differential(vec3 v, vec3 dv, float hemi)
 {
     float h = rk_paraboloid_hemi_sign(hemi);
-    vec3 w = vec3(abs(v.x) < RK_FLT_MIN ? 0.0f : v.x, abs(v.y) < RK_FLT_MIN ? 0.0f : v.y,
-                  abs(v.z) < RK_FLT_MIN ? 0.0f : v.z);
+    vec3 w = rk_flush_subnormal(v);
     float m = rk_paraboloid_max_abs(w);
     if (m < RK_FLT_MIN) {
         return vec2(0.0f);

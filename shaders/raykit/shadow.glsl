@@ -177,8 +177,7 @@ RK_INLINE vec3 rk_sh_finite3(vec3 v) { return vec3(rk_sh_finite(v.x), rk_sh_fini
 RK_INLINE float rk_sh_omni_distance(vec3 v)
 {
     vec3 w = rk_sh_finite3(v);
-    w = vec3(abs(w.x) < RK_FLT_MIN ? 0.0f : w.x, abs(w.y) < RK_FLT_MIN ? 0.0f : w.y,
-             abs(w.z) < RK_FLT_MIN ? 0.0f : w.z);
+    w = rk_flush_subnormal(w);
     float m = rk_paraboloid_max_abs(w);
     if (m < RK_FLT_MIN) {
         return 0.0f;

@@ -17,6 +17,8 @@ std::vector<parity::Case> fresnel_cases()
     const char* F = "raykit/fresnel.glsl";
     std::vector<parity::Case> cases = {
         RK_PARITY("rk_saturate", "raykit/common.glsl", (dom::signed_unit()), 1, o[0] = rk_saturate(a[0]);),
+        RK_PARITY("rk_flush_subnormal", "raykit/common.glsl", (dom::signed_unit(), dom::signed_unit(), dom::signed_unit()), 3,
+                  vec3 v = rk_flush_subnormal(vec3(a[0], a[1], a[2])); o[0] = v.x; o[1] = v.y; o[2] = v.z;),
         RK_PARITY("rk_pow5", "raykit/common.glsl", (dom::range(-8.0f, 8.0f)), 1, o[0] = rk_pow5(rk_saturate(a[0]));),
         RK_PARITY("rk_safe_sqrt", "raykit/common.glsl", (dom::range(-1.0f, 100.0f)), 1, o[0] = rk_safe_sqrt(min(a[0], 1e30f));),
         RK_PARITY("rk_safe_rcp_pos", "raykit/common.glsl", (dom::range(0.0f, 100.0f)), 1,
