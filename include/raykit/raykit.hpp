@@ -35,6 +35,7 @@
 #include "raykit/svo_hybrid.hpp"
 #include "raykit/svo_mesh.hpp"
 #include "raykit/svo_secondary.hpp"
+#include "raykit/svo_trace_packet.hpp"
 #include "raykit/svo_trace_simd.hpp"
 #include "raykit/svo_traverse.hpp"
 #include "raykit/tangents.hpp"
