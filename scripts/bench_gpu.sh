@@ -6,7 +6,8 @@
 #   parity.log, parity.xml   the whole GPU parity suite (gtest) on that driver
 #   svo_gl/                  bench_svo_gl: table.md, table.md.dat, log.txt, lod.png
 #   interior/                bench_interior_gl: results.json, results.csv, table.md, console.txt, materials.png
-#   demo/                    the voxel and city demos' images, rendered by that driver
+#   deferred/, volumes/      samples/deferred_city --bench and samples/effects --bench (bench.txt, console.txt)
+#   demo/                    every sample's images, rendered by that driver
 #   machine.txt              the renderer, the CPU count, the date
 # Report them on any machine (no GPU needed):
 #   BENCH_SVO_GL_FROM=DIR/svo_gl BENCH_SVO_GL_DOC=docs/benchmarks_svo_gl_gpu.md \
@@ -22,7 +23,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 OUT="${1:?usage: bench_gpu.sh OUT_DIR [BUILD_DIR]}"
 BUILD="${2:-build}"
 LIMIT="${RAYKIT_GPU_STEP_TIMEOUT:-240}"
-mkdir -p "$OUT/svo_gl" "$OUT/interior" "$OUT/demo"
+mkdir -p "$OUT/svo_gl" "$OUT/interior" "$OUT/deferred" "$OUT/volumes" "$OUT/demo"
 
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
@@ -51,7 +52,21 @@ step interior "$BUILD/bench/bench_interior_gl" --width 1024 --height 768 --round
   --json "$OUT/interior/results.json" --csv "$OUT/interior/results.csv" --md "$OUT/interior/table.md" \
   --png "$OUT/interior/materials.png" > "$OUT/interior/console.txt" 2>&1
 
-for demo in svo_demo city; do
-  if [ -x "$BUILD/samples/$demo" ]; then step "$demo" "$BUILD/samples/$demo" "$OUT/demo" > "$OUT/demo/$demo.log" 2>&1; fi
+if [ -x "$BUILD/samples/deferred_city" ]; then
+  step deferred "$BUILD/samples/deferred_city" --bench --reps "${RAYKIT_GPU_DEFERRED_REPS:-9}" --size 960x540 \
+    --bench-out "$OUT/deferred/bench.txt" > "$OUT/deferred/console.txt" 2>&1
+fi
+if [ -x "$BUILD/samples/effects" ]; then
+  step volumes "$BUILD/samples/effects" --bench --reps "${RAYKIT_GPU_VOLUMES_REPS:-7}" --size 1024x768 \
+    --bench-out "$OUT/volumes/bench.txt" > "$OUT/volumes/console.txt" 2>&1
+fi
+
+for demo in svo_demo city deferred_city effects fresnel_curves tonemap_gallery; do
+  [ -x "$BUILD/samples/$demo" ] || continue
+  case "$demo" in
+    fresnel_curves|tonemap_gallery) arg="$OUT/demo/$demo.png" ;;  # these two take a file, the others a folder
+    *) arg="$OUT/demo" ;;
+  esac
+  step "$demo" "$BUILD/samples/$demo" "$arg" > "$OUT/demo/$demo.log" 2>&1
 done
 exit $parity
