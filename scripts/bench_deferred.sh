@@ -7,7 +7,8 @@
 #
 # Usage: bash scripts/bench_deferred.sh
 # Environment: BENCH_DEFERRED_BUILD (build folder, default build), BENCH_DEFERRED_SIZE (default
-# 960x540), BENCH_DEFERRED_REPS (default 9), BENCH_DEFERRED_DOC (default docs/benchmarks_deferred.md).
+# 960x540), BENCH_DEFERRED_REPS (default 9), BENCH_DEFERRED_DOC (default docs/benchmarks_deferred.md),
+# BENCH_DEFERRED_FROM (report a bench.txt written elsewhere, e.g. by scripts/bench_gpu.sh, instead of running).
 # About two minutes on Mesa llvmpipe with 2 cores.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -15,10 +16,14 @@ BUILD="${BENCH_DEFERRED_BUILD:-build}"
 SIZE="${BENCH_DEFERRED_SIZE:-960x540}"
 REPS="${BENCH_DEFERRED_REPS:-9}"
 DOC="${BENCH_DEFERRED_DOC:-docs/benchmarks_deferred.md}"
-cmake --build "$BUILD" --target deferred_city -j"$(nproc)"
 TMP="$(mktemp)"
 trap 'rm -f "$TMP"' EXIT
-"$BUILD/samples/deferred_city" --bench --reps "$REPS" --size "$SIZE" --bench-out "$TMP" >/dev/null
+if [ -n "${BENCH_DEFERRED_FROM:-}" ]; then  # a run made elsewhere (scripts/bench_gpu.sh: DIR/deferred/bench.txt)
+  cp "$BENCH_DEFERRED_FROM" "$TMP"
+else
+  cmake --build "$BUILD" --target deferred_city -j"$(nproc)"
+  "$BUILD/samples/deferred_city" --bench --reps "$REPS" --size "$SIZE" --bench-out "$TMP" >/dev/null
+fi
 {
   echo "# Forward against deferred shading: frame time by light count"
   echo

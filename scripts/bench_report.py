@@ -1094,8 +1094,8 @@ def svo_gl_gpu_summary(out_dir):
           "LOD errors and the plot): frame milliseconds (median) of the fragment voxel pass at full detail "
           "and with 4-pixel LOD, of the same rays traced in a compute shader, and of rasterising the mesh; "
           "Mrays/s counts the rays that enter the root cube. Where the compute pass is far faster than the "
-          "fragment pass, the fragment pipeline bounds the voxel pass, not the traversal (an H100 runs pixel "
-          "shaders on 2 of its 66 TPCs). Gritzner's thesis: 21.6 ms at 1280x720, depth 11, "
+          "fragment pass, the fragment pipeline bounds the voxel pass, not the traversal (an H100 or H200 "
+          "runs pixel shaders on 2 of its 66 TPCs). Gritzner's thesis: 21.6 ms at 1280x720, depth 11, "
           "on a 2013 GPU; Wilks's: about 64 Mrays/s on a GTX 670." % renderer, ""]
     md.append("| mesh | depth | size | voxel pass ms | lod4 ms | compute ms | raster ms | Mrays/s fragment | Mrays/s compute |")
     md.append("|---|---:|---|---:|---:|---:|---:|---:|---:|")

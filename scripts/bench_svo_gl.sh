@@ -48,8 +48,8 @@ casts one ray; those missing the root cube leave at the clip) and the rays that 
 (counted on the CPU for the same camera) by the median frame time. *compute* traces the same rays
 in a compute shader (colour of the hit written to a buffer, no shading, no depth): where it is far
 faster than *voxels*, the fragment pipeline rather than the traversal bounds the voxel pass (NVIDIA's
-H100 runs vertex and pixel shaders on 2 of its 66 TPCs, by its architecture whitepaper; compute uses
-all of them). Wilks ("GPU octree ray tracing") traced about 64 Mrays/s on a GTX 670. The LOD error is the mean absolute
+H100 and H200, both GH100 chips, run vertex and pixel shaders on 2 of 66 TPCs, by the H100 architecture
+whitepaper; compute uses all of them). Wilks ("GPU octree ray tracing") traced about 64 Mrays/s on a GTX 670. The LOD error is the mean absolute
 difference over RGB to the full-detail image of the same tree (8-bit levels) and the share of
 pixels differing by more than 8 levels.
 

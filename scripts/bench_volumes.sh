@@ -9,17 +9,23 @@
 # Usage: bash scripts/bench_volumes.sh
 # Environment: BENCH_VOLUMES_BUILD (default build), BENCH_VOLUMES_SIZE (default 1024x768, the
 # thesis's interior-mapping resolution; its volume chapter does not state one), BENCH_VOLUMES_REPS
-# (default 7), BENCH_VOLUMES_DOC (default docs/benchmarks_volumes.md). About two minutes on llvmpipe.
+# (default 7), BENCH_VOLUMES_DOC (default docs/benchmarks_volumes.md), BENCH_VOLUMES_FROM (report the
+# folder DIR/volumes written by scripts/bench_gpu.sh instead of running). About two minutes on llvmpipe.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 BUILD="${BENCH_VOLUMES_BUILD:-build}"
 SIZE="${BENCH_VOLUMES_SIZE:-1024x768}"
 REPS="${BENCH_VOLUMES_REPS:-7}"
 DOC="${BENCH_VOLUMES_DOC:-docs/benchmarks_volumes.md}"
-cmake --build "$BUILD" --target effects -j"$(nproc)"
 TMP="$(mktemp)"
 trap 'rm -f "$TMP" "$TMP.log"' EXIT
-"$BUILD/samples/effects" --bench --reps "$REPS" --size "$SIZE" --bench-out "$TMP" > "$TMP.log"
+if [ -n "${BENCH_VOLUMES_FROM:-}" ]; then  # a run made elsewhere (scripts/bench_gpu.sh: DIR/volumes/)
+  cp "$BENCH_VOLUMES_FROM/bench.txt" "$TMP"
+  cp "$BENCH_VOLUMES_FROM/console.txt" "$TMP.log"
+else
+  cmake --build "$BUILD" --target effects -j"$(nproc)"
+  "$BUILD/samples/effects" --bench --reps "$REPS" --size "$SIZE" --bench-out "$TMP" > "$TMP.log"
+fi
 RENDERER="$(grep -m1 '^\*\*Renderer' "$TMP.log" || true)"
 {
   echo "# Volumes: billboards, slices and raytraced soft particles"

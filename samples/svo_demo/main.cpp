@@ -355,7 +355,8 @@ int run_headless(const std::string& out_dir, bool quick)
         if (k == 1) glass_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         paste(glass_img, 2 * w, img, w, h, k * w, 0);
     }
-    std::printf("svo_demo: secondary-rays view %dx%d: %.1f ms (%s)\n", w, h, glass_ms, ctx.renderer().c_str());
+    std::printf("svo_demo: secondary-rays view %dx%d: %.1f ms, first draw with that program, so compilation included (%s)\n", w, h,
+                glass_ms, ctx.renderer().c_str());
     label(glass_img, 2 * w, h,
           {{glm::vec2(12.0f, 10.0f), "primary rays only"},
            {glm::vec2(float(w) + 12.0f, 10.0f), "secondary rays (svo_secondary.glsl): shadows,"},
