@@ -244,3 +244,48 @@ TEST(GpuParityHarness, MismatchesAndTiesAreCounted)
     EXPECT_EQ(tied.ties + tied.mismatches, tied.rows);
 }
 #undef RK_PARITY_SIDE
+
+// The conditioning allowance of hardware drivers (parity::within_conditioning), on the CPU alone:
+// a GPU answer that an input a few ulps away gives is accepted (a decision boundary, cancellation),
+// one that no nearby input gives is not, nor anything non-finite; bit-pattern cases never get it.
+TEST(GpuParityHarness, ConditioningAllowance)
+{
+    parity::Case step_case;
+    step_case.name = "harness: floor";
+    step_case.inputs = {dom::unit()};
+    step_case.n_out = 1;
+    step_case.cpu = [](const float* a, float* o) { o[0] = std::floor(a[0]); };
+    const float below_one = std::nextafter(1.0f, 0.0f);
+    const float one_gpu[1] = {1.0f}, two_gpu[1] = {2.0f}, nan_gpu[1] = {std::nanf("")};
+    EXPECT_TRUE(parity::within_conditioning(step_case, &below_one, one_gpu, false));
+    EXPECT_FALSE(parity::within_conditioning(step_case, &below_one, two_gpu, false));
+    EXPECT_FALSE(parity::within_conditioning(step_case, &below_one, nan_gpu, false));
+    const float half = 0.5f;
+    EXPECT_FALSE(parity::within_conditioning(step_case, &half, one_gpu, false));
+    step_case.hw_ulps = 0;
+    EXPECT_FALSE(parity::within_conditioning(step_case, &below_one, one_gpu, false));
+    step_case.hw_ulps = 4;
+    step_case.flush_denormal_inputs = false;
+    EXPECT_FALSE(parity::within_conditioning(step_case, &below_one, one_gpu, false));
+
+    // Cancellation: 1e20 - 1e20 is 0 in C++; a fused or differently rounded 5e10 is within what a
+    // 4-ulp move of either operand gives (ulp(1e20) = 2^43, about 8.8e12), 1e15 is not.
+    parity::Case diff_case;
+    diff_case.name = "harness: difference";
+    diff_case.inputs = {dom::unit(), dom::unit()};
+    diff_case.n_out = 1;
+    diff_case.cpu = [](const float* a, float* o) { o[0] = a[0] - a[1]; };
+    const float big[2] = {1e20f, 1e20f};
+    const float near_gpu[1] = {5e10f}, far_gpu[1] = {1e15f};
+    EXPECT_TRUE(parity::within_conditioning(diff_case, big, near_gpu, false));
+    EXPECT_FALSE(parity::within_conditioning(diff_case, big, far_gpu, false));
+
+    // Steps stay finite and, on a flushing driver, skip the denormals.
+    const float fmin = std::numeric_limits<float>::min(), fmax = std::numeric_limits<float>::max();
+    EXPECT_EQ(parity::ulp_step(0.0f, 1, true), fmin);
+    EXPECT_EQ(parity::ulp_step(0.0f, -1, true), -fmin);
+    EXPECT_EQ(parity::ulp_step(fmin, -1, true), 0.0f);
+    EXPECT_EQ(parity::ulp_step(0.0f, 1, false), std::numeric_limits<float>::denorm_min());
+    EXPECT_EQ(parity::ulp_step(fmax, 3, false), fmax);
+    EXPECT_EQ(parity::ulp_step(1.0f, 2, false), std::nextafter(std::nextafter(1.0f, 2.0f), 2.0f));
+}
