@@ -3,6 +3,7 @@
 // Fahlén, "Illumination for Real-Time Rendering of Large Architectural Environments" (2005), §3.1.
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
@@ -631,4 +632,37 @@ TEST(Fresnel, StressNoNanNoInf)
         ++n;
     }
     std::printf("stress: %ld outputs checked, all finite and in range\n", n);
+}
+
+// rk_div (common.glsl) against float64: the quotient to 0.5 ulp (correct rounding: the scaling is by
+// an exact power of two) for divisors across the whole range, those above 2^100 included, where the
+// plain a / b is what GLSL leaves undefined; the same bits as a / b for |b| <= 2^100.
+TEST(Common, DivMatchesFloat64AcrossTheRange)
+{
+    std::mt19937 rng(20261128u);
+    std::uniform_real_distribution<double> e(-126.0, 127.9), u(1.0, 2.0);
+    long checked = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const float a = static_cast<float>((rng() & 1u ? -1.0 : 1.0) * u(rng) * std::exp2(e(rng)));
+        const float b = static_cast<float>((rng() & 1u ? -1.0 : 1.0) * u(rng) * std::exp2(e(rng)));
+        const double exact = static_cast<double>(a) / static_cast<double>(b);
+        const float q = raykit::rk_div(a, b);
+        if (std::abs(exact) < static_cast<double>(FLT_MIN) || std::abs(exact) > static_cast<double>(FLT_MAX)) continue;
+        ASSERT_EQ(q, static_cast<float>(exact)) << a << " / " << b;
+        if (std::abs(b) <= 1.2676506e30f) {
+            ASSERT_EQ(q, a / b);
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 140000);  // about 3 in 4 quotients are normal floats
+    EXPECT_EQ(raykit::rk_div(3.4028235e38f, 3.4028235e38f), 1.0f);
+    EXPECT_EQ(raykit::rk_div(-3.4028235e38f, 3.4028235e38f), -1.0f);
+    const glm::vec4 q4 = raykit::rk_div4(glm::vec4(1e38f, -2e38f, 1.0f, 0.0f), 2e38f);
+    EXPECT_EQ(q4.x, 0.5f);
+    EXPECT_EQ(q4.y, -1.0f);
+    EXPECT_EQ(q4.w, 0.0f);
+    const glm::vec3 q3 = raykit::rk_div3(glm::vec3(3e38f, 1.5e38f, -3e38f), 3e38f);
+    EXPECT_EQ(q3.x, 1.0f);
+    EXPECT_EQ(q3.y, 0.5f);
+    EXPECT_EQ(q3.z, -1.0f);
 }

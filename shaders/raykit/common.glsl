@@ -98,6 +98,31 @@ RK_INLINE float rk_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
 /// denormals give a large finite value instead of inf. Cost: 1 max + 1 div.
 RK_INLINE float rk_safe_rcp_pos(float x) { return 1.0f / max(x, RK_FLT_MIN); }
 
+/// rk_div: a / b, with |b| above 2^100 brought down first: a and b both scaled by 2^-100 (exact
+/// powers of two). GLSL (4.50 §4.7.1) specifies division only for divisors up to 2^126, and a driver
+/// that divides through the reciprocal (NVIDIA's) gets 0 beyond, so x / FLT_MAX is 0 there. The same
+/// bits as a / b wherever |b| <= 2^100, and wherever the quotient is at least RK_FLT_MIN. b = 0 and
+/// non-finite operands behave as in a / b. Cost: 1 abs, 1 compare, 2 selects, 1 div (+2 mul).
+RK_INLINE float rk_div(float a, float b)
+{
+    bool big = abs(b) > 1.2676506e30f;
+    return (big ? a * 7.8886091e-31f : a) / (big ? b * 7.8886091e-31f : b);
+}
+
+/// rk_div3: rk_div for each component of a over one divisor b. Cost: 3 div (+4 mul).
+RK_INLINE vec3 rk_div3(vec3 a, float b)
+{
+    bool big = abs(b) > 1.2676506e30f;
+    return (big ? a * 7.8886091e-31f : a) / (big ? b * 7.8886091e-31f : b);
+}
+
+/// rk_div4: rk_div for each component of a over one divisor b. Cost: 4 div (+5 mul).
+RK_INLINE vec4 rk_div4(vec4 a, float b)
+{
+    bool big = abs(b) > 1.2676506e30f;
+    return (big ? a * 7.8886091e-31f : a) / (big ? b * 7.8886091e-31f : b);
+}
+
 /// rk_flush_subnormal: v with each component below RK_FLT_MIN in magnitude (subnormal, or ±0) made
 /// +0, as a GPU that flushes subnormals stores it, so that what follows decides alike on every
 /// backend. NaN passes unchanged. Exact. Cost: 1 abs, 1 compare, 1 select (vec3).

@@ -110,7 +110,7 @@ RK_INLINE float rk_log2_luminance(vec3 rgb, float delta)
 RK_INLINE float rk_log_average_from_sum(float sum_log2, float count)
 {
     float n = rk_exposure_clamp(count, 1.0f, RK_FLT_MAX);
-    float m = rk_exposure_clamp(sum_log2 / n, RK_LOG2_LUM_MIN, RK_LOG2_LUM_MAX);
+    float m = rk_exposure_clamp(rk_div(sum_log2, n), RK_LOG2_LUM_MIN, RK_LOG2_LUM_MAX);  // n may exceed 2^126
     return exp2(m);
 }
 

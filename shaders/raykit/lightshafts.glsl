@@ -76,7 +76,7 @@ RK_INLINE float rk_ls_fade(vec4 c, float margin)
     // c.w / |c| with c scaled by its largest component first, so neither the squares overflow nor
     // tiny components underflow (to zero on drivers that flush denormals): dot(s, s) is in [1, 4].
     float mc = max(max(abs(c.x), abs(c.y)), max(abs(c.z), abs(c.w)));
-    vec4 sc = c / max(mc, RK_FLT_MIN);
+    vec4 sc = rk_div4(c, max(mc, RK_FLT_MIN));  // rk_div4: mc may exceed 2^126
     float facing = smoothstep(0.0f, 0.1f, sc.w / sqrt(max(dot(sc, sc), 1.0f)));
     return edge * facing;
 }

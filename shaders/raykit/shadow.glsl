@@ -75,7 +75,10 @@ RK_INLINE float rk_sh_rotation(uvec2 pixel)
 {
     float x = float(pixel.x & 4095u);
     float y = float(pixel.y & 4095u);
-    float f = 52.9829189f * fract(0.06711056f * x + 0.00583715f * y);
+    // RK_PRECISE: fract() of the sum amplifies its rounding 333 times; a fused multiply-add (which a
+    // driver may use unless told not to) moved the angle by up to 0.01 rad.
+    RK_PRECISE float g = 0.06711056f * x + 0.00583715f * y;
+    RK_PRECISE float f = 52.9829189f * fract(g);
     return 6.28318530717958648f * fract(f);
 }
 
@@ -126,7 +129,7 @@ RK_INLINE float rk_sh_cascade_blend(float dist, float split_far, float band)
 {
     if (!(band > 0.0f)) return 0.0f;
     float b = min(band, RK_FLT_MAX);  // an infinite band: its limit, 1
-    return rk_saturate((dist - (split_far - b)) / b);
+    return rk_saturate(rk_div(dist - (split_far - b), b));  // rk_div: b may exceed 2^126
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -160,10 +160,10 @@ RK_INLINE float rk_vol_optical_depth_falloff(vec3 o, vec3 dir, vec3 c, float r, 
     float tc = clamp(-dot(w, dir), -RK_FLT_MAX, RK_FLT_MAX);  // the closest point's t (dir is unit)
     // In units of r (so nothing overflows): the closest point's offset f / r, and s / r in [-1, 1]
     // (a and b lie inside the sphere's span).
-    vec3 fr = rk_ray_clamp3_(w + tc * dir) / rr;
+    vec3 fr = rk_div3(rk_ray_clamp3_(w + tc * dir), rr);  // rk_div: r may exceed 2^126
     float beta = min(dot(fr, fr), 1.0f);
-    float u0 = clamp((a - tc) / rr, -1.0f, 1.0f);
-    float u1 = clamp((b - tc) / rr, -1.0f, 1.0f);
+    float u0 = clamp(rk_div(a - tc, rr), -1.0f, 1.0f);
+    float u1 = clamp(rk_div(b - tc, rr), -1.0f, 1.0f);
     // The integral is (u1 - u0) r [(1 - beta) - (u1² + u0 u1 + u0²) / 3], and (u1 - u0) r is the
     // chord b - a: taking it directly keeps a short chord of a huge sphere from going through
     // quotients that underflow (flushed to zero on some drivers), and the bracket is in [0, 1].
@@ -183,7 +183,7 @@ RK_INLINE float rk_vol_optical_depth_falloff(vec3 o, vec3 dir, vec3 c, float r, 
 RK_INLINE float rk_vol_sphere_edge_fade(vec2 span, float r)
 {
     if (!(span.x <= span.y)) return 0.0f;
-    float h = 0.5f * (span.y - span.x) / max(r, RK_FLT_MIN);
+    float h = 0.5f * rk_div(span.y - span.x, max(r, RK_FLT_MIN));  // rk_div: r may exceed 2^126
     return rk_saturate(h * h);
 }
 

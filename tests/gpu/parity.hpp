@@ -382,6 +382,23 @@ inline float ulp_step(float x, int steps, bool flush)
     return x;
 }
 
+/// A tie rule for hardware drivers only (hardware_allowances(); llvmpipe keeps the strict check):
+/// every GPU output within rel times the row's largest |C++ output|. For functions that cancel terms
+/// of the scale of their largest output (a coordinate 1e20 away): a driver's contraction or
+/// reciprocal division rounds those terms differently, which no input move of a few ulps
+/// reproduces (each input alone may not even reach the cancelling terms).
+inline std::function<bool(const float*, const float*, const float*)> hw_row_scale_tie(int n_out, double rel)
+{
+    return [n_out, rel](const float*, const float* g, const float* h) {
+        if (!hardware_allowances()) return false;
+        double scale = 0.0;
+        for (int k = 0; k < n_out; ++k) scale = std::max(scale, std::abs(static_cast<double>(h[k])));
+        for (int k = 0; k < n_out; ++k)
+            if (!(std::abs(static_cast<double>(g[k]) - h[k]) <= rel * scale)) return false;
+        return true;
+    };
+}
+
 /// The conditioning allowance of a hardware driver: whether every output of `gpu` lies within the
 /// range the C++ build's output takes when each input moves by up to c.hw_ulps ulps (each input
 /// alone to both ends, then 64 random joint moves; the range widened by the case's tolerance).

@@ -19,6 +19,15 @@ std::vector<parity::Case> fresnel_cases()
         RK_PARITY("rk_saturate", "raykit/common.glsl", (dom::signed_unit()), 1, o[0] = rk_saturate(a[0]);),
         RK_PARITY("rk_flush_subnormal", "raykit/common.glsl", (dom::signed_unit(), dom::signed_unit(), dom::signed_unit()), 3,
                   vec3 v = rk_flush_subnormal(vec3(a[0], a[1], a[2])); o[0] = v.x; o[1] = v.y; o[2] = v.z;),
+        // rk_div: divisors up to ±FLT_MAX (the adversarial values reach both inputs); NVIDIA's
+        // reciprocal division returns 0 for a divisor above 2^126, rk_div the quotient.
+        RK_PARITY("rk_div / rk_div3 / rk_div4", "raykit/common.glsl", (dom::range(-1e30f, 1e30f), dom::range(-1e38f, 1e38f)), 3,
+                  // Divisors of magnitude at least 1, numerators at most 1e30: finite quotients.
+                  float b = abs(a[1]) >= 1.0f ? a[1] : 1.0f;
+                  float n = clamp(a[0], -1e30f, 1e30f);
+                  o[0] = rk_div(n, b);
+                  vec3 q3 = rk_div3(vec3(n, 1.0f, -b), b); o[1] = q3.z;
+                  vec4 q4 = rk_div4(vec4(b, n, 0.5f, 2.0f), b); o[2] = q4.x + q4.w;),
         RK_PARITY("rk_pow5", "raykit/common.glsl", (dom::range(-8.0f, 8.0f)), 1, o[0] = rk_pow5(rk_saturate(a[0]));),
         RK_PARITY("rk_safe_sqrt", "raykit/common.glsl", (dom::range(-1.0f, 100.0f)), 1, o[0] = rk_safe_sqrt(min(a[0], 1e30f));),
         RK_PARITY("rk_safe_rcp_pos", "raykit/common.glsl", (dom::range(0.0f, 100.0f)), 1,

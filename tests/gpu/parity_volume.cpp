@@ -53,6 +53,9 @@ TEST(GpuParity, Volume)
     for (parity::Case& c : cases) {
         // log, exp, sqrt and division: the driver's precision (GLSL leaves it to the implementation);
         // the harness's default tolerances (2e-6 absolute + 2e-5 relative).
+        // On a hardware driver, the slice uv of a vertex 1e20 away cancels terms of that size: within
+        // 1e-6 of the row's largest output (NVIDIA: 5.5e-10).
+        if (c.name == "rk_vol_slice_uv") c.tie = parity::hw_row_scale_tie(c.n_out, 1e-6);
         const parity::Result r = parity::run(c, parity::shader_dir(), 8192);
         EXPECT_TRUE(r.ok) << c.name << ": " << r.mismatches << " mismatches, worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;
