@@ -204,7 +204,8 @@ RK_INLINE float rk_fresnel_dielectric_fast(float cos_i, vec3 params)
     float b = e2 * c + g;
     float ns = (c - g) * b;   // rs * (a b)
     float np = (e2 * c - g) * a;  // rp * (a b)
-    return 0.5f * (ns * ns + np * np) / max(rk_sqr(a * b), RK_FLT_MIN);
+    // min: 1 + 2^-23 on a driver that divides by a reciprocal (NVIDIA), 1 at most elsewhere.
+    return min(0.5f * (ns * ns + np * np) / max(rk_sqr(a * b), RK_FLT_MIN), 1.0f);
 }
 
 /// rk_fresnel_dielectric_fast (eta form): convenience that builds the params inline; costs one
@@ -366,7 +367,9 @@ RK_INLINE float rk_fresnel_glazing(float r, float panes)
     float n2 = 2.0f * clamp(panes, 0.0f, 1e6f);
     // 1 + (2N - 1) R as (1 - R) + 2N R: no cancellation when R -> 1 with few panes.
     RK_PRECISE float den = (1.0f - x) + n2 * x;
-    return n2 * x / max(den, RK_FLT_MIN);
+    // min: a no-op where division is correctly rounded; 1 + 2^-23 on a driver dividing by a
+    // reciprocal (NVIDIA) for R = 1.
+    return min(n2 * x / max(den, RK_FLT_MIN), 1.0f);
 }
 
 /// rk_fresnel_glazing_sp: N panes with the series summed per polarisation,

@@ -93,7 +93,7 @@ struct rk_im_furniture_hit {
 RK_INLINE vec3 rk_im_furniture_unit(vec3 v, vec3 fallback)
 {
     float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
-    vec3 s = v / max(m, RK_FLT_MIN);
+    vec3 s = rk_div3(v, max(m, RK_FLT_MIN));  // rk_div3: m may exceed 2^126
     // With m >= RK_FLT_MIN the largest |s_i| is exactly 1, so dot(s, s) is in [1, 3]; the floor
     // only keeps the unused side finite for the zero vector.
     vec3 u = s * inversesqrt(max(dot(s, s), 1.0f));

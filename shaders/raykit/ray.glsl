@@ -62,8 +62,15 @@ RK_INLINE float rk_ray_maxabs_(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs
 /// (nb_i 2^-64) x_i. Each term is at most RK_FLT_MAX.
 RK_INLINE float rk_ray_mul64_(float nb, float x)
 {
-    return abs(x) >= 2.1684043e-19f ? nb * (x * 5.42101086e-20f) : (nb * 5.42101086e-20f) * x;
+    // RK_PRECISE: a driver may otherwise reassociate the product and its scale factor (NVIDIA's
+    // compiler formed nb x first, which overflows for x = 1e20, and then 0 * Inf = NaN downstream).
+    RK_PRECISE float r = abs(x) >= 2.1684043e-19f ? nb * (x * 5.42101086e-20f) : (nb * 5.42101086e-20f) * x;
+    return r;
 }
+
+/// rk_ray_div3_: internal. rk_div (common.glsl) per component: divisors above 2^100 are scaled
+/// first, since GLSL leaves division by values above 2^126 undefined (NVIDIA returns 0).
+RK_INLINE vec3 rk_ray_div3_(vec3 a, vec3 b) { return vec3(rk_div(a.x, b.x), rk_div(a.y, b.y), rk_div(a.z, b.z)); }
 
 RK_INLINE float rk_ray_dot64_(vec3 nb, vec3 x)
 {
@@ -93,8 +100,9 @@ RK_INLINE vec2 rk_ray_plane(vec3 o, vec3 d, vec3 p0, vec3 n)
     bool nok = mn >= RK_FLT_MIN && abs(n.x) <= RK_FLT_MAX && abs(n.y) <= RK_FLT_MAX && abs(n.z) <= RK_FLT_MAX;
     vec3 nv = nok ? n : vec3(0.0f, 0.0f, 1.0f);
     float mv = nok ? mn : 1.0f;
-    vec3 nb = mv >= 2.1684043e-19f ? nv / (mv * 5.42101086e-20f) : (nv * 1.84467441e19f) / mv;
-    vec3 p = nb * 5.42101086e-20f;  // n / m: largest component ±1 (those lost here add < 2^-252 to |p|²)
+    RK_PRECISE vec3 nb0 = mv >= 2.1684043e-19f ? nv / (mv * 5.42101086e-20f) : (nv * 1.84467441e19f) / mv;
+    vec3 nb = nb0;
+    RK_PRECISE vec3 p = nb * 5.42101086e-20f;  // n / m: largest component ±1 (those lost here add < 2^-252 to |p|²)
     nb = nb * inversesqrt(dot(p, p));
     vec3 w = rk_ray_clamp3_(p0 - o);
     // Each term n̂_i x_i is formed from two normal factors where it can matter (x_i 2^-64 for
@@ -106,7 +114,7 @@ RK_INLINE vec2 rk_ray_plane(vec3 o, vec3 d, vec3 p0, vec3 n)
     // it as ±0; deciding by its sign would differ between the builds).
     bool inside = num >= -RK_FLT_MIN;
     if (!(abs(den) > RK_FLT_MIN)) return inside ? vec2(-RK_FLT_MAX, RK_FLT_MAX) : RK_RAY_MISS;
-    float t = clamp(num / den, -RK_FLT_MAX, RK_FLT_MAX);
+    float t = clamp(rk_div(num, den), -RK_FLT_MAX, RK_FLT_MAX);  // |den| may exceed 2^126
     return den < 0.0f ? vec2(t, RK_FLT_MAX) : vec2(-RK_FLT_MAX, t);
 }
 
@@ -259,7 +267,7 @@ RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_O
     vec3 w = rk_ray_clamp3_(o - c);
     float sw = rk_ray_maxabs_(w) < 1.1529215e18f && rmin < 8.67361738e-19f ? 1.84467441e19f : 1.0f;
     bool sd = rk_ray_maxabs_(d) < 1.1529215e18f;
-    vec2 t = rk_ray_sphere_core_((w * sw) / q, (sd ? d * 1.84467441e19f : d) / q, rmin * sw, ne, nx);
+    vec2 t = rk_ray_sphere_core_(rk_ray_div3_(w * sw, q), rk_ray_div3_(sd ? d * 1.84467441e19f : d, q), rmin * sw, ne, nx);
     // t in units of d: times 2^64 for the direction's scale, over 2^64 for the position's; ±RK_FLT_MAX
     // (a miss, an unbounded or a clamped end) stays.
     float ts = sd ? (sw > 1.0f ? 1.0f : 1.84467441e19f) : (sw > 1.0f ? 5.42101086e-20f : 1.0f);
@@ -267,8 +275,8 @@ RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_O
     t = clamp(t, vec2(-RK_FLT_MAX), vec2(RK_FLT_MAX));
     // The gradient of |(p - c) / radii|² is parallel to n_sphere / q (each at most 1, finite), taken
     // as (2^100 n_sphere) / q so that a component over q up to 2^226 stays normal.
-    n_enter = rk_normalize_safe((ne * 1.2676506e30f) / q, vec3(0.0f));
-    n_exit = rk_normalize_safe((nx * 1.2676506e30f) / q, vec3(0.0f));
+    n_enter = rk_normalize_safe(rk_ray_div3_(ne * 1.2676506e30f, q), vec3(0.0f));
+    n_exit = rk_normalize_safe(rk_ray_div3_(nx * 1.2676506e30f, q), vec3(0.0f));
     return t;
 }
 
@@ -362,8 +370,8 @@ RK_INLINE vec2 rk_ray_box_normals(vec3 o, vec3 d, vec3 lo, vec3 hi, RK_OUT(vec3)
         return RK_RAY_MISS;
     vec3 dd = vec3(par.x ? 1.0f : d.x, par.y ? 1.0f : d.y, par.z ? 1.0f : d.z);
     // Quotients may overflow to ±Inf (finite / tiny); clamped. No 0 * Inf, so never NaN.
-    vec3 ta = rk_ray_clamp3_(ga / dd);
-    vec3 tb = rk_ray_clamp3_(gb / dd);
+    vec3 ta = rk_ray_clamp3_(rk_ray_div3_(ga, dd));  // |d_i| may exceed 2^126
+    vec3 tb = rk_ray_clamp3_(rk_ray_div3_(gb, dd));
     // A crossing with |t| < RK_FLT_MIN is t = 0 in both builds (a flushing GPU stores it as ±0, and
     // the comparisons below would otherwise order it differently from the CPU's denormal).
     ta = vec3(abs(ta.x) <= RK_FLT_MIN ? 0.0f : ta.x, abs(ta.y) <= RK_FLT_MIN ? 0.0f : ta.y, abs(ta.z) <= RK_FLT_MIN ? 0.0f : ta.z);

@@ -71,7 +71,9 @@ RK_INLINE float rk_reinhard_scale(float lum, float key, float log_average)
 RK_INLINE float rk_reinhard(float x)
 {
     float v = rk_hdr_sanitize(x);
-    return v / (1.0f + v);
+    // min: a no-op where division is correctly rounded; a driver dividing by a reciprocal (NVIDIA)
+    // gave 1 + 2^-23 for L = 6e13.
+    return min(v / (1.0f + v), 1.0f);
 }
 
 /// rk_reinhard_extended: L (1 + L / W^2) / (1 + L) (Eq. 3.17): L = W maps exactly to 1; values

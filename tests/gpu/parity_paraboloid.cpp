@@ -12,6 +12,7 @@
 #include <string>
 
 #include "parity.hpp"
+#include "parity_fresnel_ties.hpp"
 #include "raykit/envmap_correction.hpp"
 #include "raykit/paraboloid.hpp"
 #include "raykit/window_glass.hpp"
@@ -20,6 +21,14 @@ using namespace raykit;
 namespace dom = parity::dom;
 
 namespace {
+
+// What a hardware driver's texture filtering may differ by from exact bilinear/trilinear weights,
+// for texel values in [0, 1]: NVIDIA's filters with sub-texel weights (and the LOD fraction)
+// quantised to 1/256, so each of the two bilinear weights and the level weight can be off by
+// 1/512: at most 3/512 = 5.9e-3 times the largest texel difference (at most 1 here); measured on an
+// H200: 4.1e-3. llvmpipe filters with exact weights and keeps the tighter bounds.
+constexpr double kHwFilterTol = 3.0 / 512.0;
+double filter_tol(double software_bound) { return parity::software_renderer() ? software_bound : std::max(software_bound, kHwFilterTol); }
 
 parity::Domain any() { return {-4.0f, 4.0f, false, {0.5f, -0.5f, 1.0f / 3.0f}}; }
 parity::Domain hemi() { return {-1.0f, 1.0f, false, {1.0f, -1.0f, 0.0f, -0.0f}}; }
@@ -97,6 +106,22 @@ std::vector<parity::Case> paraboloid_cases()
                                        vec2 r = rk_dual_paraboloid_uv_half(vec3(a[0], a[1], a[2]), a[3], a[4]);
                                        o[0] = r.x; o[1] = r.y;);
             c.rel_tol = 1e-4;
+            // On a hardware driver: st = (x, y) / (1 + h ẑ) with ẑ from a normalisation (GLSL:
+            // inversesqrt to 2 ulp, division to 2.5), so an error of a few ulps in ẑ is amplified by
+            // 1 / (1 + h ẑ) towards the other half's pole (NVIDIA: 5e-4 relative at 1 + h ẑ = 1.3e-4,
+            // 1 % at 6e-6). Allowed there: 16 ulps of ẑ over 1 + h ẑ, relative.
+            c.tie = [](const float* in, const float* g, const float* h) {
+                if (!parity::hardware_allowances()) return false;
+                const double x = in[0], y = in[1], z = in[2];
+                const double len = std::sqrt(x * x + y * y + z * z);
+                if (!(len > 0.0) || !std::isfinite(len)) return false;
+                const double hs = in[4] > -1.17549435e-38 ? 1.0 : -1.0;
+                const double den = std::max(1.0 + hs * z / len, 1e-30);
+                const double rel = 1e-4 + 16.0 * 5.96e-8 / den;
+                for (int k = 0; k < 2; ++k)
+                    if (!(std::abs(static_cast<double>(g[k]) - h[k]) <= 2e-6 + rel * std::abs(static_cast<double>(h[k])))) return false;
+                return true;
+            };
             return c;
         }(),
         RK_PARITY("rk_dual_paraboloid_seam_weight", P, (any(), any(), any(), dom::range(-0.1f, 0.2f)), 1,
@@ -291,7 +316,8 @@ TEST(GpuParity, EnvmapCorrection)
 
 TEST(GpuParity, WindowGlass)
 {
-    for (const parity::Case& c : window_glass_cases()) {
+    for (parity::Case& c : window_glass_cases()) {
+        if (c.name == "rk_window_glass_reflectance_exact") c.tie = parity::hw_glazing_tie();
         const parity::Result r = parity::run(c, parity::shader_dir());
         EXPECT_TRUE(r.ok) << c.name << ": " << r.mismatches << " mismatches, worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;
@@ -324,6 +350,7 @@ TEST(GpuParity, WindowGlassModes)
                        2e-6,
                        2e-5,
                        {{"RK_WINDOW_GLASS_FRESNEL", m.glass}, {"RK_FRESNEL_WINDOW_MODE", m.fresnel}}, true, {}};
+        if (std::string(m.fresnel) == "3" && std::string(m.glass) == "0") c.tie = parity::hw_glazing_tie();
         const parity::Result r = parity::run(c, parity::shader_dir(), 2048);
         EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;
@@ -483,7 +510,7 @@ TEST(GpuParity, DualParaboloidSampling)
         const double e = max_err(render(0, l), l, false);
         std::printf("[parity] rk_dual_paraboloid_sample_lod at lod %.2f vs sample_dual_paraboloid: max abs %.3g\n",
                     static_cast<double>(l), e);
-        EXPECT_LT(e, 2e-3) << "lod " << l;
+        EXPECT_LT(e, filter_tol(2e-3)) << "lod " << l;
     }
     const std::vector<float> grad = render(1, 0.0f), naive = render(2, 0.0f);
     const double e_grad = max_err(grad, 0.0f, false), e_grad_seam = max_err(grad, 0.0f, true);
@@ -492,7 +519,7 @@ TEST(GpuParity, DualParaboloidSampling)
         "[parity] rk_dual_paraboloid_sample_grad (magnified) vs lod 0: max abs %.3g, on the seam quads %.3g; "
         "texture() with implicit derivatives: %.3g on the seam quads\n",
         e_grad, e_grad_seam, e_naive_seam);
-    EXPECT_LT(e_grad, 2e-3);
+    EXPECT_LT(e_grad, filter_tol(2e-3));
     EXPECT_GT(e_naive_seam, 10.0 * e_grad_seam);  // the coarse-mip line that sample_grad avoids
     // Minified by a LOD bias of 3: the LOD the hardware derives from the analytic derivatives,
     // recomputed on the CPU from the grid's quad differences with GL's isotropic rho. Drivers may
@@ -560,7 +587,7 @@ TEST(GpuParity, DualParaboloidSampling)
             }
             std::printf("[parity] rk_dual_paraboloid_sample_lod_seamless at lod %.0f (%ld of %zu directions in the fade band) "
                         "vs sample_dual_paraboloid: max abs %.3g\n", static_cast<double>(l), in_band, dv.size(), e);
-            EXPECT_LT(e, 2e-3) << "lod " << l;
+            EXPECT_LT(e, filter_tol(2e-3)) << "lod " << l;
         }
         EXPECT_GT(in_band, static_cast<long>(dv.size() / 4));
     }
@@ -719,7 +746,7 @@ TEST(GpuParity, ParaboloidSampleBiased)
         const double e = compare(render(0, bias), 0, bias, true, worst);
         std::printf("[parity] rk_paraboloid_sample_biased at bias %.2f (LOD %.2f) vs the CPU: max abs %.3g (%s)\n",
                     static_cast<double>(bias), std::max(0.0, static_cast<double>(bias)), e, worst.c_str());
-        EXPECT_LT(e, 1e-5) << "bias " << bias << ": " << worst;
+        EXPECT_LT(e, filter_tol(1e-5)) << "bias " << bias << ": " << worst;
     }
     for (float bias : {0.0f, 2.0f}) {
         std::string worst;
@@ -728,7 +755,7 @@ TEST(GpuParity, ParaboloidSampleBiased)
             "[parity] rk_paraboloid_sample_biased, random directions (zero derivatives: magnified) at bias %.0f vs "
             "sample_paraboloid: max abs %.3g (%s)\n",
             static_cast<double>(bias), e, worst.c_str());
-        EXPECT_LT(e, 1e-5) << "bias " << bias << ": " << worst;
+        EXPECT_LT(e, filter_tol(1e-5)) << "bias " << bias << ": " << worst;
     }
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
