@@ -55,7 +55,8 @@ RK_INLINE vec2 rk_ls_light_uv(vec4 c)
 {
     float w = abs(c.w) > RK_FLT_MIN ? c.w : RK_FLT_MIN;
     // The quotient first: 0.5 c.x underflows for |c.x| near RK_FLT_MIN (flushed to 0 on some drivers).
-    return vec2(clamp(0.5f + 0.5f * (c.x / w), -1.0e6f, 1.0e6f), clamp(0.5f + 0.5f * (c.y / w), -1.0e6f, 1.0e6f));
+    // rk_div: |w| may exceed 2^126, where a driver dividing by a reciprocal (NVIDIA) returns 0.
+    return vec2(clamp(0.5f + 0.5f * rk_div(c.x, w), -1.0e6f, 1.0e6f), clamp(0.5f + 0.5f * rk_div(c.y, w), -1.0e6f, 1.0e6f));
 }
 
 /// rk_ls_fade: the strength factor of the effect for a light at clip position c: 0 when the light

@@ -62,10 +62,33 @@ RK_INLINE float rk_ray_maxabs_(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs
 /// (nb_i 2^-64) x_i. Each term is at most RK_FLT_MAX.
 RK_INLINE float rk_ray_mul64_(float nb, float x)
 {
-    // RK_PRECISE: a driver may otherwise reassociate the product and its scale factor (NVIDIA's
-    // compiler formed nb x first, which overflows for x = 1e20, and then 0 * Inf = NaN downstream).
-    RK_PRECISE float r = abs(x) >= 2.1684043e-19f ? nb * (x * 5.42101086e-20f) : (nb * 5.42101086e-20f) * x;
-    return r;
+    // x 2^-64 by lowering x's exponent field by 64 (exact: |x| >= 2^-62 is normal, and so is the
+    // result), not by a multiplication: NVIDIA's compiler moves a constant factor out of a product,
+    // even a `precise` one, so nb (x 2^-64) became (nb x) 2^-64, which overflows for x = 1e20 (and
+    // then Inf - Inf = NaN downstream). A bit operation cannot be reassociated. Same bits as
+    // nb * (x * 2^-64).
+    bool xl = abs(x) >= 2.1684043e-19f;
+    float xs = xl ? uintBitsToFloat(floatBitsToUint(x) - 0x20000000u) : x;
+    float ns = xl ? nb : nb * 5.42101086e-20f;
+    return ns * xs;
+}
+
+/// rk_ray_shift_: internal. x 2^k (k = scale's exponent, scale = 2^k), by adding k to x's exponent
+/// field where x and the result are normal floats (exact), else as x * scale. NVIDIA's compiler
+/// moves constant factors across products and quotients (it turned (n / (m 2^-64)) into
+/// n (1 / m) 2^64, and 1 / m is 0 for m above 2^126), even in `precise` expressions; a bit
+/// operation is out of its reach. Same bits as x * scale.
+RK_INLINE float rk_ray_shift_(float x, int k, float scale)
+{
+    uint b = floatBitsToUint(x);
+    int e = int((b >> 23u) & 255u);
+    bool ok = e >= 1 && e + k >= 1 && e + k <= 254;
+    return ok ? uintBitsToFloat(b + uint(k * 8388608)) : x * scale;
+}
+
+RK_INLINE vec3 rk_ray_shift3_(vec3 v, int k, float scale)
+{
+    return vec3(rk_ray_shift_(v.x, k, scale), rk_ray_shift_(v.y, k, scale), rk_ray_shift_(v.z, k, scale));
 }
 
 /// rk_ray_div3_: internal. rk_div (common.glsl) per component: divisors above 2^100 are scaled
@@ -100,9 +123,8 @@ RK_INLINE vec2 rk_ray_plane(vec3 o, vec3 d, vec3 p0, vec3 n)
     bool nok = mn >= RK_FLT_MIN && abs(n.x) <= RK_FLT_MAX && abs(n.y) <= RK_FLT_MAX && abs(n.z) <= RK_FLT_MAX;
     vec3 nv = nok ? n : vec3(0.0f, 0.0f, 1.0f);
     float mv = nok ? mn : 1.0f;
-    RK_PRECISE vec3 nb0 = mv >= 2.1684043e-19f ? nv / (mv * 5.42101086e-20f) : (nv * 1.84467441e19f) / mv;
-    vec3 nb = nb0;
-    RK_PRECISE vec3 p = nb * 5.42101086e-20f;  // n / m: largest component ±1 (those lost here add < 2^-252 to |p|²)
+    vec3 nb = mv >= 2.1684043e-19f ? nv / rk_ray_shift_(mv, -64, 5.42101086e-20f) : rk_ray_shift3_(nv, 64, 1.84467441e19f) / mv;
+    vec3 p = nb * 5.42101086e-20f;  // n / m: largest component ±1 (those lost here add < 2^-252 to |p|²)
     nb = nb * inversesqrt(dot(p, p));
     vec3 w = rk_ray_clamp3_(p0 - o);
     // Each term n̂_i x_i is formed from two normal factors where it can matter (x_i 2^-64 for
@@ -164,13 +186,13 @@ RK_INLINE vec2 rk_ray_sphere_core_(vec3 w, vec3 d, float r, RK_OUT(vec3) n_enter
     // Direction: dn = d / m (largest component ±1; above 2^100 scaled by 2^-100 first, exact, since
     // GLSL defines division only for divisors up to 2^126), u = dn / |dn|.
     bool big = m > 1.2676506e30f;
-    float mm = big ? m * 7.8886091e-31f : m;
+    float mm = big ? rk_ray_shift_(m, -100, 7.8886091e-31f) : m;
     // dn and u are formed times 2^64 (dn64, u64; exact powers of two, so the same bits): a component
     // of d down to 2^-190 of the largest stays normal, and the products with u below are taken by
     // rk_ray_mul64_ between normal factors. d / m alone left such components denormal, flushed by a
     // GPU: a ray (1, 2^-130, 0) from 2^128 away then passed its target 1 unit off.
-    vec3 db = big ? d * 7.8886091e-31f : d;
-    vec3 dn64 = mm >= 2.1684043e-19f ? db / (mm * 5.42101086e-20f) : (db * 1.84467441e19f) / mm;
+    vec3 db = big ? rk_ray_shift3_(d, -100, 7.8886091e-31f) : d;
+    vec3 dn64 = mm >= 2.1684043e-19f ? db / rk_ray_shift_(mm, -64, 5.42101086e-20f) : rk_ray_shift3_(db, 64, 1.84467441e19f) / mm;
     vec3 dn = dn64 * 5.42101086e-20f;
     float len = sqrt(dot(dn, dn));  // in [1, sqrt(3)]
     vec3 u64 = dn64 / len;

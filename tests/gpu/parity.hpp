@@ -387,14 +387,18 @@ inline float ulp_step(float x, int steps, bool flush)
 /// of the scale of their largest output (a coordinate 1e20 away): a driver's contraction or
 /// reciprocal division rounds those terms differently, which no input move of a few ulps
 /// reproduces (each input alone may not even reach the cancelling terms).
-inline std::function<bool(const float*, const float*, const float*)> hw_row_scale_tie(int n_out, double rel)
+/// Outputs listed in `exact` (indices, flags) must still be equal.
+inline std::function<bool(const float*, const float*, const float*)> hw_row_scale_tie(int n_out, double rel,
+                                                                                      std::vector<int> exact = {})
 {
-    return [n_out, rel](const float*, const float* g, const float* h) {
+    return [n_out, rel, exact](const float*, const float* g, const float* h) {
         if (!hardware_allowances()) return false;
         double scale = 0.0;
         for (int k = 0; k < n_out; ++k) scale = std::max(scale, std::abs(static_cast<double>(h[k])));
-        for (int k = 0; k < n_out; ++k)
-            if (!(std::abs(static_cast<double>(g[k]) - h[k]) <= rel * scale)) return false;
+        for (int k = 0; k < n_out; ++k) {
+            const bool ex = std::find(exact.begin(), exact.end(), k) != exact.end();
+            if (ex ? g[k] != h[k] : !(std::abs(static_cast<double>(g[k]) - h[k]) <= rel * scale)) return false;
+        }
         return true;
     };
 }

@@ -65,6 +65,102 @@ namespace {
 
 const std::vector<int> kHitExact = {2, 3, 4, 5, 6, 16};
 
+/// Whether two hit rows agree: the exact fields equal, the others within the trace tolerance.
+bool same_hit(const float* g, const float* h)
+{
+    for (int k = 0; k < 17; ++k) {
+        const bool ex = std::find(kHitExact.begin(), kHitExact.end(), k) != kHitExact.end();
+        if (ex ? g[k] != h[k] : !(std::abs(static_cast<double>(g[k]) - h[k]) <= 1e-5 + 1e-4 * std::abs(static_cast<double>(h[k]))))
+            return false;
+    }
+    return true;
+}
+
+using SceneTrace = rk_im_hit (*)(const float* a, vec3 p, vec3 cam, vec3 n, vec3 dpx, vec3 dpy, rk_im_grid g);
+
+/// The hardware tie of the "scene" rows: they put p exactly on a grid plane (a facade, or a wall
+/// plane the ray starts on), where the trace's "next plane strictly beyond" is decided by the last
+/// ulp of the grid coordinate; a driver's fused multiply-adds (in the snap itself) and its 2.5-ulp
+/// division (in rk_im_grid_coord) land on the other side. The input perturbation of the
+/// conditioning allowance cannot reach it (the snap floors it away), so the row is a tie when the
+/// C++ trace from the snapped p, cam and room size, each component moved by up to 4 ulps, gives the
+/// GPU's hit.
+bool hw_trace_tie_after_setup(SceneTrace trace, const float* a, const float* gpu, vec3 p, vec3 cam, vec3 n, vec3 dpx,
+                              vec3 dpy, rk_im_grid g);
+
+std::function<bool(const float*, const float*, const float*)> hw_scene_tie(SceneTrace trace)
+{
+    return [trace](const float* a, const float* gpu, const float*) {
+        if (!parity::hardware_allowances()) return false;
+        RK_TRACE_SCENE
+        return hw_trace_tie_after_setup(trace, a, gpu, p, cam, n, dpx, dpy, g);
+    };
+}
+
+/// The same for the "domain" rows, whose set-up clamps (a coordinate clamped to 1e5 cannot be moved
+/// by moving the raw input): the C++ trace from the clamped p, cam, room size and origin.
+std::function<bool(const float*, const float*, const float*)> hw_domain_tie(SceneTrace trace)
+{
+    return [trace](const float* a, const float* gpu, const float*) {
+        if (!parity::hardware_allowances()) return false;
+        RK_TRACE_DOMAIN
+        if (hw_trace_tie_after_setup(trace, a, gpu, p, cam, n, dpx, dpy, g)) return true;
+        for (int t = 0; t < 48; ++t) {  // the origin alone, +-1..8 ulps
+            rk_im_grid gg = g;
+            gg.origin[t / 16] = parity::ulp_step(gg.origin[t / 16], (t % 8 + 1) * ((t / 8) % 2 ? -1 : 1), true);
+            float o[17] = {};
+            rk_im_hit h = trace(a, p, cam, n, dpx, dpy, gg);
+            RK_EMIT_HIT(h)
+            if (same_hit(gpu, o)) return true;
+        }
+        return false;
+    };
+}
+
+bool hw_trace_tie_after_setup(SceneTrace trace, const float* a, const float* gpu, vec3 p, vec3 cam, vec3 n, vec3 dpx,
+                              vec3 dpy, rk_im_grid g)
+{
+    {
+        // p, cam and the room size each alone to +-1..4 ulps (the room size moves the grid coordinate
+        // by ulps of itself, which p near the origin cannot), then 64 joint moves.
+        for (int t = 0; t < 9 * 8 + 64; ++t) {
+            vec3 pp = p, cc = cam;
+            rk_im_grid gg = g;
+            if (t < 72) {
+                const int comp = t / 8, steps = (t % 4 + 1) * ((t / 4) % 2 ? -1 : 1);
+                float& v = comp < 3 ? pp[comp] : (comp < 6 ? cc[comp - 3] : gg.room_size[comp - 6]);
+                v = parity::ulp_step(v, steps, true);
+            } else {
+                for (int k = 0; k < 3; ++k) {
+                    pp[k] = parity::ulp_step(pp[k], (t * 7 + k * 3) % 9 - 4, true);
+                    cc[k] = parity::ulp_step(cc[k], (t * 5 + k * 11) % 9 - 4, true);
+                    gg.room_size[k] = parity::ulp_step(gg.room_size[k], (t * 3 + k * 5) % 9 - 4, true);
+                }
+            }
+            float o[17] = {};
+            rk_im_hit h = trace(a, pp, cc, n, dpx, dpy, gg);
+            RK_EMIT_HIT(h)
+            if (same_hit(gpu, o)) return true;
+        }
+        return false;
+    }
+}
+
+rk_im_hit scene_trace_grad(const float*, vec3 p, vec3 cam, vec3 n, vec3 dpx, vec3 dpy, rk_im_grid g)
+{
+    return rk_im_trace_grad(p, cam, n, dpx, dpy, g);
+}
+
+rk_im_hit domain_trace_varying(const float* a, vec3 p, vec3 cam, vec3 n, vec3, vec3, rk_im_grid g)
+{
+    return rk_im_trace_varying(p, cam, n, g, vec3(a[21], a[22], a[23]), RK_KEY(24, 25));
+}
+
+rk_im_hit scene_trace_varying_grad(const float* a, vec3 p, vec3 cam, vec3 n, vec3 dpx, vec3 dpy, rk_im_grid g)
+{
+    return rk_im_trace_varying_grad(p, cam, n, dpx, dpy, g, vec3(a[21], a[22], a[23]), RK_KEY(24, 25));
+}
+
 std::vector<Domain> trace_domains(bool scene)
 {
     std::vector<Domain> d;
@@ -176,17 +272,20 @@ std::vector<Entry> interior_cases()
     c = RK_PARITY_X("rk_im_trace_grad scene", I, (Domain{}), 17,
                     RK_TRACE_SCENE rk_im_hit h = rk_im_trace_grad(p, cam, n, dpx, dpy, g); RK_EMIT_HIT(h));
     c.inputs = trace_domains(true);
+    c.tie = hw_scene_tie(scene_trace_grad);
     e.push_back({c, kHitExact});
     c = RK_PARITY_X("rk_im_trace_varying domain", I, (Domain{}), 17,
                     RK_TRACE_DOMAIN o[0] = dpx.x + dpy.x; rk_im_hit h = rk_im_trace_varying(p, cam, n, g, vec3(a[21], a[22], a[23]), RK_KEY(24, 25));
                     RK_EMIT_HIT(h));
     c.inputs = trace_domains(false);
+    c.tie = hw_domain_tie(domain_trace_varying);
     e.push_back({c, kHitExact});
     c = RK_PARITY_X("rk_im_trace_varying_grad scene", I, (Domain{}), 17,
                     RK_TRACE_SCENE rk_im_hit h = rk_im_trace_varying_grad(p, cam, n, dpx, dpy, g, vec3(a[21], a[22], a[23]),
                                                                            RK_KEY(24, 25));
                     RK_EMIT_HIT(h));
     c.inputs = trace_domains(true);
+    c.tie = hw_scene_tie(scene_trace_varying_grad);
     e.push_back({c, kHitExact});
     // interior_surface.glsl: the texel choice of each room-texture mode, on the scene traces
     // (displaced walls, so the cube direction is exercised where the regular cell differs).
@@ -236,6 +335,10 @@ TEST(GpuParity, InteriorMapping)
         if (en.c.n_out == 17 && en.c.abs_tol < 1.0) {
             en.c.abs_tol = 1e-5;
             en.c.rel_tol = 1e-4;
+            // Domain rows with coordinates up to 1e5 and derivatives up to 1e10: on hardware, the
+            // continuous fields within 1e-6 of the row's largest output (a fused origin + plane
+            // size moves pos by an ulp of 1e5), the hit's identity still exact.
+            if (!en.c.tie) en.c.tie = parity::hw_row_scale_tie(17, 1e-6, kHitExact);
         }
         const parity::Result r = parity::run(en.c, parity::shader_dir(), 4096, en.exact);
         rows += r.rows;
@@ -265,6 +368,7 @@ TEST(GpuParity, InteriorTraceAutoVariants)
                                : rk_im_trace_grad(p, cam, n, dpx, dpy, g);
             RK_EMIT_HIT(h)
         };
+        c.tie = hw_scene_tie(mode ? scene_trace_varying_grad : scene_trace_grad);
         const parity::Result r = parity::run(c, parity::shader_dir(), 2048, kHitExact);
         EXPECT_TRUE(r.ok) << c.name << ": worst " << r.worst;
     }

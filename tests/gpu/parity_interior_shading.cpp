@@ -222,6 +222,10 @@ std::vector<parity::Case> interior_shading_cases()
                 return x >= 16777216.0 && g[0] >= 0.0f && g[0] < count && g[0] == std::floor(g[0]);
             };
         if (c.name == "rk_im_window_fresnel" || c.name == "rk_im_window") c.abs_tol = 8e-6;
+        // Colours up to RK_HDR_MAX (1e18) mixed by Fresnel weights: a driver's fused multiply-adds
+        // round the 1e18 terms differently, so a small channel next to a huge one moves by ~1e-7 of
+        // the huge one (NVIDIA: 6e10 next to 1e18). On hardware, within 1e-6 of the row's largest.
+        if (c.name == "rk_im_window_fresnel") c.tie = parity::hw_row_scale_tie(c.n_out, 1e-6);
     }
     return cases;
 }

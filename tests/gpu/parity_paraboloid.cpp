@@ -318,6 +318,9 @@ TEST(GpuParity, WindowGlass)
 {
     for (parity::Case& c : window_glass_cases()) {
         if (c.name == "rk_window_glass_reflectance_exact") c.tie = parity::hw_glazing_tie();
+        // Colours up to RK_HDR_MAX (1e18) mixed by the pane reflectance: on hardware, within 1e-6 of
+        // the row's largest output (a driver's fused multiply-adds: 5e10 next to 1e18 on NVIDIA).
+        if (c.name == "rk_window_glass_shade") c.tie = parity::hw_row_scale_tie(c.n_out, 1e-6);
         const parity::Result r = parity::run(c, parity::shader_dir());
         EXPECT_TRUE(r.ok) << c.name << ": " << r.mismatches << " mismatches, worst " << r.worst;
         EXPECT_EQ(r.non_finite, 0) << c.name;
