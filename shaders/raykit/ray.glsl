@@ -176,8 +176,11 @@ RK_INLINE vec2 rk_ray_sphere_core_(vec3 w, vec3 d, float r, RK_OUT(vec3) n_enter
     // Position scale: keep |w| and r in [2^-50, 2^50] (2^±80 are exact powers of two).
     float s = max(rk_ray_maxabs_(w), rr);
     float k = s > 1.1258999e15f ? 8.27180613e-25f : (s < 8.8817842e-16f ? 1.20892582e24f : 1.0f);
-    vec3 ws = w * k;
-    float rs = rr * k;
+    int ke = s > 1.1258999e15f ? -80 : (s < 8.8817842e-16f ? 80 : 0);
+    // Through the exponent field (rk_ray_shift_): a compiler that merges constant factors would
+    // otherwise fold k into a caller's own scaling (2^64 2^80) before the small w is applied.
+    vec3 ws = rk_ray_shift3_(w, ke, k);
+    float rs = rk_ray_shift_(rr, ke, k);
     float m = rk_ray_maxabs_(d);
     if (!(m >= RK_FLT_MIN)) {
         // No direction: a point, inside or not.
@@ -289,7 +292,9 @@ RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_O
     vec3 w = rk_ray_clamp3_(o - c);
     float sw = rk_ray_maxabs_(w) < 1.1529215e18f && rmin < 8.67361738e-19f ? 1.84467441e19f : 1.0f;
     bool sd = rk_ray_maxabs_(d) < 1.1529215e18f;
-    vec2 t = rk_ray_sphere_core_(rk_ray_div3_(w * sw, q), rk_ray_div3_(sd ? d * 1.84467441e19f : d, q), rmin * sw, ne, nx);
+    int swe = sw > 1.0f ? 64 : 0;
+    vec2 t = rk_ray_sphere_core_(rk_ray_div3_(rk_ray_shift3_(w, swe, sw), q),
+                                 rk_ray_div3_(sd ? rk_ray_shift3_(d, 64, 1.84467441e19f) : d, q), rk_ray_shift_(rmin, swe, sw), ne, nx);
     // t in units of d: times 2^64 for the direction's scale, over 2^64 for the position's; ±RK_FLT_MAX
     // (a miss, an unbounded or a clamped end) stays.
     float ts = sd ? (sw > 1.0f ? 1.0f : 1.84467441e19f) : (sw > 1.0f ? 5.42101086e-20f : 1.0f);
