@@ -15,6 +15,11 @@
 #   BENCH_INTERIOR_REPORT_ONLY=1 BENCH_INTERIOR_OUT=DIR/interior BENCH_INTERIOR_CPUS=<cpus> \
 #     BENCH_INTERIOR_DOC=docs/benchmarks_interior_gpu.md \
 #     BENCH_INTERIOR_PNG=docs/img/bench_interior_materials_gpu.png bash scripts/bench_interior.sh
+#   BENCH_DEFERRED_FROM=DIR/deferred/bench.txt BENCH_DEFERRED_DOC=docs/benchmarks_deferred_gpu.md \
+#     bash scripts/bench_deferred.sh
+#   BENCH_VOLUMES_FROM=DIR/volumes BENCH_VOLUMES_DOC=docs/benchmarks_volumes_gpu.md bash scripts/bench_volumes.sh
+# With RAYKIT_PARITY_DUMP=DIR2 set (an existing folder), the parity suite also writes its mismatching rows to DIR2
+# (tests/gpu/parity.hpp; replay them anywhere with RAYKIT_PARITY_REPLAY=DIR2).
 # Usage: bash scripts/bench_gpu.sh OUT_DIR [BUILD_DIR]
 # Each step has a time limit (RAYKIT_GPU_STEP_TIMEOUT seconds, default 240) and a failing step does
 # not stop the others; the exit status is that of the parity suite.

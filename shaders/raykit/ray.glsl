@@ -277,12 +277,15 @@ RK_INLINE vec2 rk_ray_sphere(vec3 o, vec3 d, vec3 c, float r)
 /// there). A flat ellipsoid (q up to 2^254) is cast with the position (r_min < 2^-60, |o - c| <
 /// 2^60) and the direction (|d| < 2^60) scaled by 2^64 first, and its normals taken as
 /// (2^100 n_sphere) / q, so that no scaled component is denormal (exact powers of two: the same bits
-/// where none was). Cost: rk_ray_sphere's + 9 div + ~6 flops (+ 2 normalisations for the normals).
+/// where none was). A disc (smallest semi-axis below 2^-60) is hit by the CPU build and by drivers
+/// that keep denormals; a driver that flushes them may miss it, its scaled radius being subnormal
+/// (seen on NVIDIA; docs/gpu-drivers.md). Cost: rk_ray_sphere's + 9 div + ~6 flops (+ 2
+/// normalisations for the normals).
 RK_INLINE vec2 rk_ray_ellipsoid_normals(vec3 o, vec3 d, vec3 c, vec3 radii, RK_OUT(vec3) n_enter, RK_OUT(vec3) n_exit)
 {
     vec3 rad = max(abs(radii), vec3(RK_FLT_MIN));
     float rmin = min(min(rad.x, rad.y), rad.z);
-    vec3 q = min(rad / rmin, vec3(RK_FLT_MAX));  // >= 1
+    vec3 q = min(rk_div3(rad, rmin), vec3(RK_FLT_MAX));  // >= 1 (rk_div3: rmin may exceed 2^126)
     vec3 ne;
     vec3 nx;
     // A flat ellipsoid's q reaches 2^254, which leaves w / q and d / q denormal (a flushing GPU then
