@@ -57,22 +57,6 @@ RK_INLINE float rk_ray_maxabs_(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs
 // ---------------------------------------------------------------------------------------------
 // Plane (half-space)
 
-/// rk_ray_dot64_: internal. dot(nb, x) 2^-64 for nb = n̂ 2^64 (|nb_i| <= 2^64), each product taken
-/// between normal factors where it can reach RK_FLT_MIN: nb_i (x_i 2^-64) for |x_i| >= 2^-62, else
-/// (nb_i 2^-64) x_i. Each term is at most RK_FLT_MAX.
-RK_INLINE float rk_ray_mul64_(float nb, float x)
-{
-    // x 2^-64 by lowering x's exponent field by 64 (exact: |x| >= 2^-62 is normal, and so is the
-    // result), not by a multiplication: NVIDIA's compiler moves a constant factor out of a product,
-    // even a `precise` one, so nb (x 2^-64) became (nb x) 2^-64, which overflows for x = 1e20 (and
-    // then Inf - Inf = NaN downstream). A bit operation cannot be reassociated. Same bits as
-    // nb * (x * 2^-64).
-    bool xl = abs(x) >= 2.1684043e-19f;
-    float xs = xl ? uintBitsToFloat(floatBitsToUint(x) - 0x20000000u) : x;
-    float ns = xl ? nb : nb * 5.42101086e-20f;
-    return ns * xs;
-}
-
 /// rk_ray_shift_: internal. x 2^k (k = scale's exponent, scale = 2^k), by adding k to x's exponent
 /// field where x and the result are normal floats (exact), else as x * scale. NVIDIA's compiler
 /// moves constant factors across products and quotients (it turned (n / (m 2^-64)) into
@@ -89,6 +73,21 @@ RK_INLINE float rk_ray_shift_(float x, int k, float scale)
 RK_INLINE vec3 rk_ray_shift3_(vec3 v, int k, float scale)
 {
     return vec3(rk_ray_shift_(v.x, k, scale), rk_ray_shift_(v.y, k, scale), rk_ray_shift_(v.z, k, scale));
+}
+
+/// rk_ray_dot64_: internal. dot(nb, x) 2^-64 for nb = n̂ 2^64 (|nb_i| <= 2^64), each product taken
+/// between normal factors where it can reach RK_FLT_MIN: nb_i (x_i 2^-64) for |x_i| >= 2^-62, else
+/// (nb_i 2^-64) x_i. Each term is at most RK_FLT_MAX.
+RK_INLINE float rk_ray_mul64_(float nb, float x)
+{
+    // x 2^-64 through the exponent field (rk_ray_shift_; |x| >= 2^-62 keeps it normal), not by a
+    // multiplication: NVIDIA's compiler moved the constant out of nb (x 2^-64), even a `precise`
+    // one, and (nb x) 2^-64 overflows for x = 1e20 (then Inf - Inf = NaN downstream). Same bits as
+    // nb * (x * 2^-64).
+    bool xl = abs(x) >= 2.1684043e-19f;
+    float xs = xl ? rk_ray_shift_(x, -64, 5.42101086e-20f) : x;
+    float ns = xl ? nb : nb * 5.42101086e-20f;
+    return ns * xs;
 }
 
 /// rk_ray_div3_: internal. rk_div (common.glsl) per component: divisors above 2^100 are scaled

@@ -446,6 +446,7 @@ inline bool within_conditioning(const Case& c, const float* in, const float* gpu
         for (size_t j = 0; j < n_in; ++j) x[j] = ulp_step(in[j], step(rng), flush);
         eval();
     }
+    // RAYKIT_PARITY_DEBUG_COND=1 prints each judged row's GPU output and the range reached.
     if (std::getenv("RAYKIT_PARITY_DEBUG_COND"))
         for (size_t k = 0; k < n_out; ++k) std::printf("  cond %s out %zu: gpu %.9g range [%.9g, %.9g]\n", c.name.c_str(), k, gpu[k], lo[k], hi[k]);
     for (size_t k = 0; k < n_out; ++k) {
