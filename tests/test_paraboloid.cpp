@@ -186,6 +186,43 @@ TEST(Paraboloid, CentreRimAndThesisFormulas)
     EXPECT_NEAR(big.y, 0.8, 1e-7);
 }
 
+// Past the rim (the other hemisphere, read by the atlas guard band and the seam fade) st grows as
+// 1 / (1 + hemi z), which cancels towards the antipode; the encode takes it as (x^2 + y^2) /
+// (1 - hemi z) there, so st keeps its relative accuracy. Reference: float64 of the same float
+// direction, st = (x, y) (|d| - hemi z) / (x^2 + y^2), checked against the direct (x, y) / (|d| +
+// hemi z) where float64 does not cancel.
+TEST(Paraboloid, EncodePastTheRimKeepsRelativeAccuracy)
+{
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (float hemi : {1.0f, -1.0f}) {
+        ErrorStats rel;
+        for (int i = 0; i < 400000; ++i) {
+            // Distance r from the antipode's axis, log-uniform in [1e-13, 1]; any length.
+            const double r = std::pow(10.0, -13.0 * u(rng));
+            const double a = 2.0 * kPi * u(rng);
+            const double scale = std::pow(2.0, 40.0 * u(rng) - 20.0);
+            const vec3 d(static_cast<float>(scale * r * std::cos(a)), static_cast<float>(scale * r * std::sin(a)),
+                         static_cast<float>(-hemi * scale * std::sqrt(std::max(0.0, 1.0 - r * r))));
+            if (!(hemi * d.z < 0.0f)) continue;
+            const vec2 st = rk_paraboloid_encode(d, hemi);
+            const double x = d.x, y = d.y, z = d.z, h = hemi;
+            const double len = std::sqrt(x * x + y * y + z * z), xy2 = x * x + y * y;
+            const double k = (len - h * z) / xy2;
+            if (r > 1e-3) {
+                // The identity, where float64's own 1 + hemi z keeps at least 1e-10 relative.
+                const double k_direct = 1.0 / (len + h * z);
+                ASSERT_NEAR(k / k_direct, 1.0, 1e-9) << fmt(d.x, d.y, d.z);
+            }
+            const double mag = std::sqrt(xy2) * k;
+            rel.add(std::hypot(st.x - x * k, st.y - y * k) / mag, 0.0, fmt(d.x, d.y, d.z));
+        }
+        std::printf("hemi %+.0f: encode past the rim vs float64, relative to |st| %s\n", static_cast<double>(hemi),
+                    rel.str().c_str());
+        EXPECT_LE(rel.max_abs, 6e-7) << rel.str();
+    }
+}
+
 TEST(Paraboloid, SolidAngleDensity)
 {
     EXPECT_FLOAT_EQ(rk_paraboloid_solid_angle_density(vec2(0.0f)), 4.0f);
