@@ -66,19 +66,19 @@ namespace {
 const std::vector<int> kHitExact = {2, 3, 4, 5, 6, 16};
 
 /// Whether two hit rows agree: the exact fields equal, the others within the trace tolerance.
-/// With `grid` (the hardware ties), each hit position component may also differ by 2 ulps of the
+/// Used by the hardware ties: each hit position component may also differ by 2 ulps of the
 /// larger term it is computed from, max(|origin|, |pos - origin|): on the plane's axis pos = origin +
 /// plane * size, which GLSL lets a driver contract into a fused multiply-add (NVIDIA does: it skips
 /// the product's rounding, up to 0.5 ulp; the C++ build rounds it, 0.5 ulp), and the room size the
 /// tie moved by an ulp to reproduce the driver's grid coordinate moves plane * size by about 1 ulp
 /// (H200: 1.1 such ulps, 0.013 at 7.9e4 rooms from an origin at 1e5).
-bool same_hit(const float* g, const float* h, const rk_im_grid* grid = nullptr)
+bool same_hit(const float* g, const float* h, const rk_im_grid& grid)
 {
     for (int k = 0; k < 17; ++k) {
         const bool ex = std::find(kHitExact.begin(), kHitExact.end(), k) != kHitExact.end();
         double tol = 1e-5 + 1e-4 * std::abs(static_cast<double>(h[k]));
-        if (grid && k >= 13 && k <= 15) {
-            const double o = grid->origin[k - 13];
+        if (k >= 13 && k <= 15) {
+            const double o = grid.origin[k - 13];
             tol += std::ldexp(std::max(std::abs(o), std::abs(static_cast<double>(h[k]) - o)), -22);
         }
         if (ex ? g[k] != h[k] : !(std::abs(static_cast<double>(g[k]) - h[k]) <= tol)) return false;
@@ -121,7 +121,7 @@ std::function<bool(const float*, const float*, const float*)> hw_domain_tie(Scen
             float o[17] = {};
             rk_im_hit h = trace(a, p, cam, n, dpx, dpy, gg);
             RK_EMIT_HIT(h)
-            if (same_hit(gpu, o, &gg)) return true;
+            if (same_hit(gpu, o, gg)) return true;
         }
         return false;
     };
@@ -150,7 +150,7 @@ bool hw_trace_tie_after_setup(SceneTrace trace, const float* a, const float* gpu
             float o[17] = {};
             rk_im_hit h = trace(a, pp, cc, n, dpx, dpy, gg);
             RK_EMIT_HIT(h)
-            if (same_hit(gpu, o, &gg)) return true;
+            if (same_hit(gpu, o, gg)) return true;
         }
         return false;
     }
