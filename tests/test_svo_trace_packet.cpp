@@ -1,7 +1,9 @@
-// svo_trace_packet8 / svo_trace_packets (raykit/svo_trace_packet.hpp: 8 coherent rays
-// sharing one traversal) against rk_svo_trace per ray, on camera-tile packets, random coherent
-// packets and adversarial packets (every family of svo_trace_rays.hpp: axis-parallel, through
-// edges and corners, origins inside and on the lattice, mixed octants, far origins, short t_max)
+// svo_trace_packet8 / svo_trace_packet16 / svo_trace_packets (raykit/svo_trace_packet.hpp: 8 or 16
+// coherent rays sharing one traversal; 16 on AVX-512 lanes where the CPU has them, else as two 8-ray
+// packets, which must give the same bits) against rk_svo_trace per ray, on camera-tile packets,
+// random coherent packets and adversarial packets (every family of svo_trace_rays.hpp:
+// axis-parallel, through edges and corners, origins inside and on the lattice, mixed octants, far
+// origins, short t_max)
 // over random trees and voxelised meshes at depths 3, 6, 10 and 16 (and coarse max_level stops).
 // Each ray must give rk_svo_trace's hit flag, level and cell, and t within kTol root sizes (plus
 // 8 ULPs of a far origin's distance); where it does not, the packet's answer is checked against the
@@ -95,21 +97,48 @@ bool acceptable(const SvoTree& t, uint32_t level, const std::vector<glm::ivec3>&
     return true;
 }
 
-/// Traces `rays` as packets (row-major frame `width` wide, or consecutive groups of 8 when width is
-/// 0) and compares every ray with rk_svo_trace.
+void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, const std::vector<SvoRay>& rays,
+                  const std::vector<rk_svo_trace_hit>& pk, const std::vector<rk_svo_trace_hit>& one, Tally& total);
+
+/// Traces `rays` as packets (row-major frame `width` wide in 4x2 and 4x4 tiles, or consecutive
+/// groups of 8 and of 16 when width is 0) and compares every ray with rk_svo_trace. The 16-ray
+/// packets (AVX-512 lanes where the CPU has them, else two 8-ray packets) must give the 8-ray
+/// packets' answers bit for bit.
 void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays, size_t width, Tally& total,
              uint32_t max_level = ~0u)
 {
     const rk_svo_tree tree = svo_trace_tree(t, max_level);
     const std::vector<uint32_t> words = t.gpu_words();
-    std::vector<rk_svo_trace_hit> pk(rays.size()), one(rays.size());
-    if (width > 0)
-        svo_trace_packets(words.data(), tree, rays.data(), rays.size(), width, pk.data());
-    else
-        for (size_t i = 0; i < rays.size(); i += 8)
-            svo_trace_packet8(words.data(), tree, rays.data() + i, pk.data() + i, unsigned(std::min<size_t>(8, rays.size() - i)));
+    std::vector<rk_svo_trace_hit> pk8(rays.size()), pk(rays.size()), one(rays.size());
     for (size_t i = 0; i < rays.size(); ++i)
         one[i] = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+    for (unsigned lanes : {8u, 16u}) {
+        if (width > 0)
+            svo_trace_packets(words.data(), tree, rays.data(), rays.size(), width, pk.data(), 4u, lanes / 4u);
+        else
+            for (size_t i = 0; i < rays.size(); i += lanes) {
+                const unsigned n = unsigned(std::min<size_t>(lanes, rays.size() - i));
+                if (lanes == 8u)
+                    svo_trace_packet8(words.data(), tree, rays.data() + i, pk.data() + i, n);
+                else
+                    svo_trace_packet16(words.data(), tree, rays.data() + i, pk.data() + i, n);
+            }
+        if (lanes == 8u) {
+            pk8 = pk;
+        } else {
+            long differ = 0;
+            for (size_t i = 0; i < rays.size(); ++i) differ += bit_equal(pk[i], pk8[i]) ? 0 : 1;
+            EXPECT_EQ(differ, 0) << what << ": 16-ray packets differ from 8-ray packets";
+        }
+        const std::string label = std::string(what) + (lanes == 16u ? " x16" : "");
+        compare_hits(label.c_str(), t, tree, rays, pk, one, total);
+    }
+}
+
+/// Tallies packet answers `pk` against rk_svo_trace's `one` (see compare).
+void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, const std::vector<SvoRay>& rays,
+                  const std::vector<rk_svo_trace_hit>& pk, const std::vector<rk_svo_trace_hit>& one, Tally& total)
+{
     std::vector<glm::ivec3> cells;
     Tally tl;
     const double rs = double(t.root_size);
@@ -262,6 +291,9 @@ void expect_totals(const char* what, const Tally& total)
 
 TEST(SvoTracePacket, RandomTrees)
 {
+    unsigned tw = 0u, th = 0u;
+    svo_trace_packet_best_tile(tw, th);
+    std::printf("[packet] 16-ray packets on %s\n", th == 4u ? "AVX-512 lanes" : "two 8-ray packets (no AVX-512F here)");
     Tally total;
     for (uint32_t depth : {1u, 2u, 3u, 6u, 10u}) {
         const size_t side3 = size_t(1) << (3 * std::min(depth, 8u));

@@ -1,5 +1,5 @@
-// raykit_svo_packet_ab: svo_trace_packets (raykit/svo_trace_packet.hpp; 4 x 2 pixel tiles of 8
-// coherent rays sharing one traversal on AVX2 lanes) against rk_svo_trace per ray and
+// raykit_svo_packet_ab: svo_trace_packets (raykit/svo_trace_packet.hpp; pixel tiles of coherent
+// rays sharing one traversal: 4 x 4 on AVX-512 lanes where the CPU has them, else 4 x 2 on AVX2) against rk_svo_trace per ray and
 // svo_trace_rays (8 AVX2 lanes, one ray per lane), paired in one process: the same tree and the
 // same 512 x 512 primary rays of raykit_bench_trace's scenes, the three tracers run in turn
 // (rotating which goes first) in chunks of 4 rows (as raykit_bench_trace hands them out), each pass
@@ -8,13 +8,14 @@
 // rk_svo_trace and over svo_trace_rays, the rays whose answer (hit flag or cell) differs from
 // rk_svo_trace's, rk_svo_trace's loop iterations per entering ray and the packet's node expansions
 // per packet.
-// Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key (default: all)]
-//        [tile width (default 4)] [tile height (default 2)]
+// Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key or "all" (default: all)]
+//        [tile width] [tile height] (default: svo_trace_packet_best_tile)
 #include <time.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "raykit/svo_build.hpp"
@@ -33,9 +34,13 @@ int main(int argc, char** argv)
 {
     const int depth = argc > 1 ? std::atoi(argv[1]) : 10;
     const int reps = argc > 2 ? std::max(1, std::atoi(argv[2])) : 11;
-    const char* only = argc > 3 ? argv[3] : nullptr;
-    const unsigned tw = argc > 4 ? unsigned(std::atoi(argv[4])) : 4u;
-    const unsigned th = argc > 5 ? unsigned(std::atoi(argv[5])) : 2u;
+    const char* only = argc > 3 && std::strcmp(argv[3], "all") != 0 ? argv[3] : nullptr;
+    unsigned tw = 0u, th = 0u;
+    raykit::svo_trace_packet_best_tile(tw, th);
+    if (argc > 5) {
+        tw = unsigned(std::atoi(argv[4]));
+        th = unsigned(std::atoi(argv[5]));
+    }
     if (!raykit::svo_trace_simd_available()) std::printf("note: no AVX2 here, every mode is the per-ray loop\n");
     const char* names[3] = {"rk_svo_trace", "svo_trace_rays", "packet"};
     for (rktrace::Scene& s : rktrace::make_scenes(512)) {

@@ -51,7 +51,8 @@ Prepared prepare(const Scene& s, int depth, int mode)
         return p;
     }
     if (mode == 2) {
-        // svo_trace_packets over each chunk of rows: 4 x 2 pixel tiles, 8 rays per traversal.
+        // svo_trace_packets over each chunk of 4 rows, its default tiles: 4 x 4 (16 rays per traversal
+        // on AVX-512 lanes) where the CPU has AVX-512, else 4 x 2 (8 rays on AVX2 lanes).
         const std::size_t width = static_cast<std::size_t>(s.camera.width);
         p.make_thread = [tp, width]() -> SpanTracer {
             auto in = std::make_shared<std::vector<raykit::SvoRay>>();
@@ -103,9 +104,9 @@ const TracerRegistrar reg_simd(TracerSpec{"raykit_simd", "raykit svo_trace_rays 
                                           31, true, {8, 9, 10, 11, 12}, false,
                                           [](const Scene& s, int depth) { return prepare(s, depth, 1); }, 50.0, 2.0, -3.0});
 
-// 8 coherent rays (4 x 2 pixel tiles) sharing one traversal (raykit/svo_trace_packet.hpp):
+// Coherent rays (4 x 4 pixel tiles on AVX-512, else 4 x 2) sharing one traversal (raykit/svo_trace_packet.hpp):
 // the answers are rk_svo_trace's (test_svo_trace_packet).
-const TracerRegistrar reg_packet(TracerSpec{"raykit_packet", "raykit svo_trace_packets (4x2 ray packets, one traversal on AVX2 lanes), geometry only",
+const TracerRegistrar reg_packet(TracerSpec{"raykit_packet", "raykit svo_trace_packets (4x4 ray packets on AVX-512 lanes, else 4x2 on AVX2), geometry only",
                                             32, true, {8, 9, 10, 11, 12}, false,
                                             [](const Scene& s, int depth) { return prepare(s, depth, 2); }, 50.0, 2.0, -3.0});
 

@@ -1,7 +1,7 @@
-// raykit — svo_trace_packet.hpp: rk_svo_trace for coherent packets of up to 8 rays (primary rays of
-// a pixel tile) that share ONE traversal of the packed octree, the rays on the 8 lanes of AVX2
-// registers, as Embree traces coherent packets. svo_trace_rays (svo_trace_simd.hpp) runs one
-// traversal per lane instead; rk_svo_trace one per call.
+// raykit — svo_trace_packet.hpp: rk_svo_trace for coherent packets of up to 8 rays (a 4x2 pixel
+// tile, on the 8 lanes of AVX2 registers) or 16 rays (a 4x4 tile, on AVX-512 lanes) that share ONE
+// traversal of the packed octree, as Embree traces coherent packets. svo_trace_rays
+// (svo_trace_simd.hpp) runs one traversal per lane instead; rk_svo_trace one per call.
 //
 // A C++ twin of rk_svo_trace, not shared text (GLSL has no lanes to program). The set-up is a lanes
 // twin of rk_svo_trace_begin_ (the same float operations in the same order) and the hit is
@@ -20,9 +20,10 @@
 // Rays of different octants in one packet are traced as one packet per octant. A packet that
 // expands more than RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. LOD
 // builds (RK_SVO_TRAVERSE_LOD=1), CPUs without AVX2 and POPCNT, trees of 2^31 words or more and
-// max_level 0 use rk_svo_trace per ray. The MSVC path (/arch:AVX2) is written but not compiled yet.
-// Cost: it pays where the 8 rays of a tile stay in the same nodes, i.e. where a pixel's footprint
-// is not much smaller than a voxel; measured speed-ups by depth are in docs/svo-traverse.md.
+// max_level 0 use rk_svo_trace per ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as
+// two 8-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
+// Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
+// not much smaller than a voxel; measured speed-ups by depth and tile are in docs/svo-traverse.md.
 #pragma once
 
 #include <cstddef>
@@ -170,6 +171,91 @@ inline int highest_bit(uint32_t m)
 }
 
 
+// What the walk keeps of the tree and the brick it is in.
+struct WalkCtx {
+    uint32_t b, top, leaf;
+    uint32_t brick, bmx, bmy;
+};
+
+inline WalkCtx walk_ctx(const rk_svo_tree& tree)
+{
+    const uint32_t b = rk_svo_brick_levels(tree.depth);
+    return WalkCtx{b, tree.depth - b, tree.max_level < tree.depth ? tree.max_level : tree.depth, 0u, 0u, 0u};
+}
+
+// The child mask (format slots) of the node `e`; loads its descriptor (pdesc) or brick masks.
+inline uint32_t node_mask(const uint32_t* words, const rk_svo_tree& tree, const Entry& e, WalkCtx& w, uint32_t& pdesc)
+{
+    pdesc = 0u;
+    if (e.level < w.top) {
+        pdesc = words[e.handle];
+        return pdesc & RK_SVO_CHILD_MASK;
+    }
+    if (e.level == w.top) {
+        const uint32_t wd = rk_svo_word_of(e.handle, tree.desc_words);
+        w.bmx = words[wd];
+        w.bmy = words[wd + 1u];
+        w.brick = e.handle;
+        return w.b == 2u ? rk_svo_brick_submask(glm::uvec2(w.bmx, w.bmy)) : (w.bmx & 0xFFu);
+    }
+    return ((e.handle < 4u ? w.bmx : w.bmy) >> (8u * (e.handle & 3u))) & 0xFFu;
+}
+
+// The hit of lane i of set-up `S` (Setup or Setup16) in mirrored child k of node `e`, entered at lo.
+template <class SetupT>
+inline void finish_lane(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, int i, int k, float lo, const Entry& e,
+                        uint32_t flip, uint32_t pdesc, uint32_t m8, const WalkCtx& w, uint32_t iter, rk_svo_trace_hit& hit)
+{
+    const uint32_t Lc = e.level + 1u;
+    const float half = uintBitsToFloat((126u - e.level) << 23u);  // 2^-(L+1)
+    rk_svo_trace_state_ s;
+    s.u = glm::vec3(S.ux[i], S.uy[i], S.uz[i]);
+    s.coef = glm::vec3(S.cx[i], S.cy[i], S.cz[i]);
+    s.bias = glm::vec3(S.bx[i], S.by[i], S.bz[i]);
+    s.flip = flip;
+    s.t_enter = S.t_enter[i];
+    s.t_scale = S.t_scale[i];
+    s.b = w.b;
+    s.top = w.top;
+    s.leaf = w.leaf;
+    s.pos = glm::vec3(e.px + half * float(k & 1), e.py + half * float((k >> 1) & 1), e.pz + half * float((k >> 2) & 1));
+    s.size = half;
+    s.scale = 23 - int(Lc);
+    s.idx = uint32_t(k);
+    s.t_min = lo;
+    s.pdesc = pdesc;
+    s.pmask = m8;
+    s.handle = e.handle;
+    s.bmask = glm::uvec2(w.bmx, w.bmy);
+    s.brick = w.brick;
+    rk_svo_trace_finish_(words, tree, s, true, iter, hit);
+}
+
+// The first child's handle of an inner node above the bricks (0 inside a brick).
+inline uint32_t first_child(const uint32_t* words, const Entry& e, uint32_t pdesc, const WalkCtx& w)
+{
+    if (e.level >= w.top) return 0u;
+    const uint32_t far_word = rk_svo_is_far(pdesc) ? words[e.handle + rk_svo_rel_ptr(pdesc)] : 0u;
+    return rk_svo_first_child(e.handle, pdesc, far_word);
+}
+
+// Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
+// branch per child).
+inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
+                       unsigned cm)
+{
+    const float half = uintBitsToFloat((126u - e.level) << 23u);
+    const uint32_t c = uint32_t(k) ^ flip;
+    Entry& ch = stack[sp];
+    ch.px = e.px + half * float(k & 1);
+    ch.py = e.py + half * float((k >> 1) & 1);
+    ch.pz = e.pz + half * float((k >> 2) & 1);
+    ch.level = e.level + 1u;
+    ch.handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
+    ch.rays = cm;
+    sp += cm != 0u ? 1 : 0;
+}
+
 // A cell's interval [lo, hi) is closed at the ray's end (rk_svo_trace enters a cell at t <= t_hi,
 // its root exit or t limit): an exit at or beyond t_hi becomes next_up(t_hi).
 RK_SVO_PACKET_TARGET inline __m256 close_end(__m256 hi, __m256 t_hi, __m256 t_hi_up)
@@ -201,17 +287,14 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
     const __m256 TL = _mm256_blendv_ps(
         z, _mm256_blendv_ps(_mm256_castsi256_ps(up), _mm256_castsi256_ps(_mm256_set1_epi32(1)), _mm256_cmp_ps(TH, z, _CMP_EQ_OQ)), lm);
 
-    const uint32_t b = rk_svo_brick_levels(tree.depth);
-    const uint32_t top = tree.depth - b;
-    const uint32_t leaf = tree.max_level < tree.depth ? tree.max_level : tree.depth;
-
+    WalkCtx w = walk_ctx(tree);
     Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
     int sp = 0;
     stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
     unsigned active = lanes;
-    uint32_t brick = 0u, bmx = 0u, bmy = 0u;
     uint32_t iter = 0u;
     alignas(32) float lo_out[8];
+    alignas(32) int32_t k_out[8];
     bool bounded = false;
     while (sp > 0) {
         const Entry e = stack[--sp];
@@ -224,19 +307,8 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
         ++iter;
         // The node's child mask (format slots) and what the hit of a child needs.
         const uint32_t L = e.level;
-        uint32_t m8, pdesc = 0u;
-        if (L < top) {
-            pdesc = words[e.handle];
-            m8 = pdesc & RK_SVO_CHILD_MASK;
-        } else if (L == top) {
-            const uint32_t w = rk_svo_word_of(e.handle, tree.desc_words);
-            bmx = words[w];
-            bmy = words[w + 1u];
-            brick = e.handle;
-            m8 = b == 2u ? rk_svo_brick_submask(glm::uvec2(bmx, bmy)) : (bmx & 0xFFu);
-        } else {
-            m8 = ((e.handle < 4u ? bmx : bmy) >> (8u * (e.handle & 3u))) & 0xFFu;
-        }
+        uint32_t pdesc;
+        const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
         const uint32_t mm = mirror_mask(m8, flip);
         // Plane distances of the node's exit (min corner), middle and entry (max corner) planes.
         const float size = uintBitsToFloat((127u - L) << 23u);  // 2^-L
@@ -266,8 +338,7 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
         C[3] = _mm256_min_ps(Mx, My);
         D[0] = _mm256_min_ps(Xz0, TL);
         D[1] = _mm256_min_ps(Mz, TL);
-        const uint32_t Lc = L + 1u;
-        if (Lc >= leaf) {
+        if (L + 1u >= w.leaf) {
             // The children are answers: the first a ray reaches in front-to-back order is its hit
             // (chosen on the lanes, no branch per child; then one finish per ray that hit).
             const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -286,65 +357,217 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
             }
             const unsigned hm = R & ~static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(left)));
             if (hm == 0u) continue;
-            alignas(32) int32_t k_out[8];
             _mm256_store_si256(reinterpret_cast<__m256i*>(k_out), hk);
             _mm256_store_ps(lo_out, hlo);
             for (unsigned m = hm; m != 0u; m &= m - 1u) {
                 const int i = svo_rays_detail::lowest_bit(m);
-                const int k = k_out[i];
-                rk_svo_trace_state_ s;
-                s.u = glm::vec3(S.ux[i], S.uy[i], S.uz[i]);
-                s.coef = glm::vec3(S.cx[i], S.cy[i], S.cz[i]);
-                s.bias = glm::vec3(S.bx[i], S.by[i], S.bz[i]);
-                s.flip = flip;
-                s.t_enter = S.t_enter[i];
-                s.t_scale = S.t_scale[i];
-                s.b = b;
-                s.top = top;
-                s.leaf = leaf;
-                s.pos = glm::vec3(e.px + half * float(k & 1), e.py + half * float((k >> 1) & 1), e.pz + half * float((k >> 2) & 1));
-                s.size = half;
-                s.scale = 23 - int(Lc);
-                s.idx = uint32_t(k);
-                s.t_min = lo_out[i];
-                s.pdesc = pdesc;
-                s.pmask = m8;
-                s.handle = e.handle;
-                s.bmask = glm::uvec2(bmx, bmy);
-                s.brick = brick;
-                rk_svo_trace_finish_(words, tree, s, true, iter, hits[i]);
+                finish_lane(words, tree, S, i, k_out[i], lo_out[i], e, flip, pdesc, m8, w, iter, hits[i]);
             }
             active &= ~hm;
             continue;
         }
         // Inner children: pushed back to front (the first to visit on top).
-        uint32_t first = 0u;
-        if (L < top) {
-            const uint32_t far_word = rk_svo_is_far(pdesc) ? words[e.handle + rk_svo_rel_ptr(pdesc)] : 0u;
-            first = rk_svo_first_child(e.handle, pdesc, far_word);
-        }
+        const uint32_t first = first_child(words, e, pdesc, w);
         for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
             const int k = svo_rays_detail::lowest_bit(rest);
             const __m256 lo = _mm256_max_ps(A[k & 3], Bk[k >> 2]);
             const __m256 hi = close_end(_mm256_min_ps(C[k & 3], D[k >> 2]), TH, TL);
-            const unsigned cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ))) & R;
-            // Written whatever cm is, kept only when some ray reaches it (no branch per child).
-            const uint32_t c = uint32_t(k) ^ flip;
-            Entry& ch = stack[sp];
-            ch.px = e.px + half * float(k & 1);
-            ch.py = e.py + half * float((k >> 1) & 1);
-            ch.pz = e.pz + half * float((k >> 2) & 1);
-            ch.level = Lc;
-            ch.handle = L < top ? first + rk_svo_child_rank(m8, c) : c;
-            ch.rays = cm;
-            sp += cm != 0u ? 1 : 0;
+            push_child(stack, sp, e, k, flip, m8, first, w,
+                       static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ))) & R);
         }
     }
     for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
     return bounded ? active : 0u;
 }
+
+// 16-ray packets (4x4 tiles) on AVX-512 lanes, GCC and Clang: the same walk on one 16-lane register
+// (the same expressions per lane, so the same answers). Two 8-lane AVX2 halves were measured no
+// faster than 4x2 packets (register pressure); one 16-lane register is (docs/svo-traverse.md).
+#if defined(__GNUC__) || defined(__clang__)
+#define RK_SVO_PACKET16 1
+#if defined(__clang__)
+#define RK_SVO_PACKET16_TARGET __attribute__((target("avx512f,avx2,popcnt")))
+#else
+// GCC contracts a product and a difference of intrinsics into a fused multiply-add where FMA is
+// enabled (AVX-512 implies it); the planes must round as rk_svo_trace's do.
+#define RK_SVO_PACKET16_TARGET __attribute__((target("avx512f,avx2,popcnt"), optimize("fp-contract=off")))
+#endif
+inline bool packet16_cpu_ok() { return packet_cpu_ok() && __builtin_cpu_supports("avx512f") != 0; }
+
+struct alignas(64) Setup16 {
+    float cx[16], cy[16], cz[16], bx[16], by[16], bz[16];
+    float ux[16], uy[16], uz[16];
+    float t_min[16], t_hi[16], t_enter[16], t_scale[16];
+    int32_t flip[16];
+    unsigned valid;
+};
+
+// Two 8-ray set-ups side by side (lanes of an absent half are invalid).
+inline void setup16(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Setup16& S)
+{
+    Setup h[2];
+    setup8(tree, rays, n < 8u ? n : 8u, h[0]);
+    setup8(tree, n > 8u ? rays + 8 : rays, n > 8u ? n - 8u : 0u, h[1]);
+    for (int k = 0; k < 2; ++k)
+        for (int i = 0; i < 8; ++i) {
+            const int j = 8 * k + i;
+            S.cx[j] = h[k].cx[i], S.cy[j] = h[k].cy[i], S.cz[j] = h[k].cz[i];
+            S.bx[j] = h[k].bx[i], S.by[j] = h[k].by[i], S.bz[j] = h[k].bz[i];
+            S.ux[j] = h[k].ux[i], S.uy[j] = h[k].uy[i], S.uz[j] = h[k].uz[i];
+            S.t_min[j] = h[k].t_min[i], S.t_hi[j] = h[k].t_hi[i], S.t_enter[j] = h[k].t_enter[i], S.t_scale[j] = h[k].t_scale[i];
+            S.flip[j] = h[k].flip[i];
+        }
+    S.valid = h[0].valid | (h[1].valid << 8u);
+}
+
+// max and min through the zero-masking forms: GCC 12's plain _mm512_max_ps passes an undefined
+// source that -Wmaybe-uninitialized reports in users' builds (the same instruction either way).
+RK_SVO_PACKET16_TARGET inline __m512 max16(__m512 a, __m512 b) { return _mm512_maskz_max_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
+RK_SVO_PACKET16_TARGET inline __m512 min16(__m512 a, __m512 b) { return _mm512_maskz_min_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
+
+RK_SVO_PACKET16_TARGET inline __m512 close_end16(__m512 hi, __m512 t_hi, __m512 t_hi_up)
+{
+    return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(hi, t_hi, _CMP_GE_OQ), hi, t_hi_up);
+}
+
+// walk() on 16 lanes: its comments apply.
+RK_SVO_PACKET16_TARGET inline unsigned walk16(const uint32_t* words, const rk_svo_tree& tree, const Setup16& S, unsigned lanes,
+                                              uint32_t flip, rk_svo_trace_hit* hits)
+{
+    const __mmask16 lm = static_cast<__mmask16>(lanes);
+    const __m512 m1 = _mm512_set1_ps(-1.0f), z = _mm512_setzero_ps();
+    const __m512 Cx = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cx)), Cy = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cy)),
+                 Cz = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cz));
+    const __m512 Bx = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.bx)), By = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.by)),
+                 Bz = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.bz));
+    const __m512 T0 = _mm512_mask_blend_ps(lm, _mm512_set1_ps(1.0f), _mm512_load_ps(S.t_min));
+    const __m512 TH = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.t_hi));
+    const __m512i up = _mm512_add_epi32(_mm512_castps_si512(TH), _mm512_mask_blend_epi32(_mm512_cmp_ps_mask(TH, z, _CMP_GT_OQ),
+                                                                                          _mm512_set1_epi32(-1), _mm512_set1_epi32(1)));
+    const __m512 TL = _mm512_mask_blend_ps(lm, z,
+                                           _mm512_mask_blend_ps(_mm512_cmp_ps_mask(TH, z, _CMP_EQ_OQ), _mm512_castsi512_ps(up),
+                                                                _mm512_castsi512_ps(_mm512_set1_epi32(1))));
+    WalkCtx w = walk_ctx(tree);
+    Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
+    int sp = 0;
+    stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
+    unsigned active = lanes;
+    uint32_t iter = 0u;
+    alignas(64) float lo_out[16];
+    alignas(64) int32_t k_out[16];
+    bool bounded = false;
+    while (sp > 0) {
+        const Entry e = stack[--sp];
+        const unsigned R = e.rays & active;
+        if (R == 0u) continue;
+        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+            bounded = true;
+            break;
+        }
+        ++iter;
+        uint32_t pdesc;
+        const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
+        const uint32_t mm = mirror_mask(m8, flip);
+        const float size = uintBitsToFloat((127u - e.level) << 23u);
+        const float half = 0.5f * size;
+        const __m512 Xx0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px), Cx), Bx);
+        const __m512 Xy0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py), Cy), By);
+        const __m512 Xz0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz), Cz), Bz);
+        const __m512 Mx = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px + half), Cx), Bx);
+        const __m512 My = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py + half), Cy), By);
+        const __m512 Mz = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz + half), Cz), Bz);
+        const __m512 Ex1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px + size), Cx), Bx);
+        const __m512 Ey1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py + size), Cy), By);
+        const __m512 Ez1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz + size), Cz), Bz);
+        __m512 A[4], Bk[2], C[4], D[2];
+        A[0] = max16(Mx, My);
+        A[1] = max16(Ex1, My);
+        A[2] = max16(Mx, Ey1);
+        A[3] = max16(Ex1, Ey1);
+        Bk[0] = max16(Mz, T0);
+        Bk[1] = max16(Ez1, T0);
+        C[0] = min16(Xx0, Xy0);
+        C[1] = min16(Mx, Xy0);
+        C[2] = min16(Xx0, My);
+        C[3] = min16(Mx, My);
+        D[0] = min16(Xz0, TL);
+        D[1] = min16(Mz, TL);
+        if (e.level + 1u >= w.leaf) {
+            __mmask16 left = static_cast<__mmask16>(R);
+            __m512i hk = _mm512_setzero_si512();
+            __m512 hlo = _mm512_setzero_ps();
+            for (uint32_t rest = mm; rest != 0u;) {
+                const int k = highest_bit(rest);
+                rest &= ~(1u << k);
+                const __m512 lo = max16(A[k & 3], Bk[k >> 2]);
+                const __m512 hi = close_end16(min16(C[k & 3], D[k >> 2]), TH, TL);
+                const __mmask16 in = static_cast<__mmask16>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ) & left);
+                hk = _mm512_mask_blend_epi32(in, hk, _mm512_set1_epi32(k));
+                hlo = _mm512_mask_blend_ps(in, hlo, lo);
+                left = static_cast<__mmask16>(left & ~in);
+            }
+            const unsigned hm = R & ~static_cast<unsigned>(left);
+            if (hm == 0u) continue;
+            _mm512_store_si512(k_out, hk);
+            _mm512_store_ps(lo_out, hlo);
+            for (unsigned m = hm; m != 0u; m &= m - 1u) {
+                const int i = svo_rays_detail::lowest_bit(m);
+                finish_lane(words, tree, S, i, k_out[i], lo_out[i], e, flip, pdesc, m8, w, iter, hits[i]);
+            }
+            active &= ~hm;
+            continue;
+        }
+        const uint32_t first = first_child(words, e, pdesc, w);
+        for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
+            const int k = svo_rays_detail::lowest_bit(rest);
+            const __m512 lo = max16(A[k & 3], Bk[k >> 2]);
+            const __m512 hi = close_end16(min16(C[k & 3], D[k >> 2]), TH, TL);
+            push_child(stack, sp, e, k, flip, m8, first, w, static_cast<unsigned>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ)) & R);
+        }
+    }
+    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
+    return bounded ? active : 0u;
+}
+#else
+#define RK_SVO_PACKET16 0
+#endif
 #endif
 
+}  // namespace svo_packet_detail
+
+namespace svo_packet_detail {
+#if RK_SVO_PACKET_SIMD
+// Whether the packet walk applies to this tree (else rk_svo_trace per ray).
+inline bool packet_tree_ok(const rk_svo_tree& tree)
+{
+    return tree.brick_base_word < 0x80000000u && tree.root_size > 0.0f && tree.depth >= 1u && tree.depth <= RK_SVO_MAX_DEPTH &&
+           tree.max_level >= 1u;
+}
+
+// Traces the set-up rays as one packet per direction octant present, with `walk_fn` (walk or
+// walk16); rays the node bound stops go to rk_svo_trace.
+template <class SetupT, class WalkFn>
+inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, const SetupT& S, unsigned n,
+                         rk_svo_trace_hit* hits, WalkFn walk_fn)
+{
+    for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace_hit{false, 0.0f, 0u, glm::uvec3(0u), glm::vec3(0.0f), 0u, 0u, glm::uvec2(0u), 0u};
+    unsigned pending = S.valid;
+    while (pending != 0u) {
+        const int32_t flip = S.flip[svo_rays_detail::lowest_bit(pending)];
+        unsigned group = 0u;
+        for (unsigned m = pending; m != 0u; m &= m - 1u) {
+            const int i = svo_rays_detail::lowest_bit(m);
+            if (S.flip[i] == flip) group |= 1u << i;
+        }
+        pending &= ~group;
+        const unsigned left = walk_fn(words, tree, S, group, uint32_t(flip), hits);
+        for (unsigned m = left; m != 0u; m &= m - 1u) {
+            const int i = svo_rays_detail::lowest_bit(m);
+            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+        }
+    }
+}
+#endif
 }  // namespace svo_packet_detail
 
 /// svo_trace_packet8: hits[i] = the answer of rk_svo_trace(words, tree, rays[i].origin, rays[i].dir,
@@ -358,46 +581,64 @@ inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, co
 {
     if (n > 8u) n = 8u;
 #if RK_SVO_PACKET_SIMD
-    if (n > 0u && tree.brick_base_word < 0x80000000u && tree.root_size > 0.0f && tree.depth >= 1u && tree.depth <= RK_SVO_MAX_DEPTH &&
-        tree.max_level >= 1u && svo_packet_detail::packet_cpu_ok()) {
+    if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet_cpu_ok()) {
         svo_packet_detail::Setup S;
         svo_packet_detail::setup8(tree, rays, n, S);
-        for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace_hit{false, 0.0f, 0u, glm::uvec3(0u), glm::vec3(0.0f), 0u, 0u, glm::uvec2(0u), 0u};
-        unsigned pending = S.valid;
-        while (pending != 0u) {
-            const int32_t flip = S.flip[svo_rays_detail::lowest_bit(pending)];
-            unsigned group = 0u;
-            for (unsigned m = pending; m != 0u; m &= m - 1u) {
-                const int i = svo_rays_detail::lowest_bit(m);
-                if (S.flip[i] == flip) group |= 1u << i;
-            }
-            pending &= ~group;
-            const unsigned left = svo_packet_detail::walk(words, tree, S, group, uint32_t(flip), hits);
-            for (unsigned m = left; m != 0u; m &= m - 1u) {
-                const int i = svo_rays_detail::lowest_bit(m);
-                hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
-            }
-        }
+        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, svo_packet_detail::walk);
         return;
     }
 #endif
     for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
 }
 
-/// svo_trace_packets: the rays of a row-major image block `width` rays wide (n = width * rows,
-/// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 8;
-/// default 4 x 2; tiles at the right and bottom edges are partial). hits[i] answers rays[i].
-inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
-                              rk_svo_trace_hit* hits, unsigned tile_w = 4u, unsigned tile_h = 2u)
+/// svo_trace_packet16: svo_trace_packet8 for up to 16 rays (a 4x4 pixel tile) sharing one traversal
+/// on AVX-512 lanes, where the CPU has AVX-512F (GCC, Clang); elsewhere rays 0-7 and 8-15 go to
+/// svo_trace_packet8. The same answers either way (the same expressions per lane). Where the rays
+/// are coherent a 4x4 packet shares more nodes than two 4x2 ones (docs/svo-traverse.md).
+inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
+                               unsigned n = 16u)
 {
-    if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w * tile_h > 8u) {
+    if (n > 16u) n = 16u;
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
+    if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet16_cpu_ok()) {
+        svo_packet_detail::Setup16 S;
+        svo_packet_detail::setup16(tree, rays, n, S);
+        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, svo_packet_detail::walk16);
+        return;
+    }
+#endif
+    svo_trace_packet8(words, tree, rays, hits, n < 8u ? n : 8u);
+    if (n > 8u) svo_trace_packet8(words, tree, rays + 8, hits + 8, n - 8u);
+}
+
+/// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 4 x 4 where
+/// svo_trace_packet16 runs on AVX-512 lanes, else 4 x 2.
+inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
+{
+    tile_w = 4u;
+    tile_h = 2u;
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
+    if (svo_packet_detail::packet16_cpu_ok()) tile_h = 4u;
+#endif
+}
+
+/// svo_trace_packets: the rays of a row-major image block `width` rays wide (n = width * rows,
+/// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 16;
+/// 0 x 0, the default: svo_trace_packet_best_tile; more than 8 rays go to svo_trace_packet16; tiles
+/// at the right and bottom edges are partial). hits[i] answers rays[i].
+inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
+                              rk_svo_trace_hit* hits, unsigned tile_w = 0u, unsigned tile_h = 0u)
+{
+    if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h);
+    if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w * tile_h > 16u) {
         for (std::size_t i = 0; i < n; i += 8) svo_trace_packet8(words, tree, rays + i, hits + i, unsigned(n - i < 8 ? n - i : 8));
         return;
     }
+    const bool wide = tile_w * tile_h > 8u;
     const std::size_t rows = (n + width - 1u) / width;
-    SvoRay in[8];
-    rk_svo_trace_hit out[8];
-    std::size_t at[8];
+    SvoRay in[16];
+    rk_svo_trace_hit out[16];
+    std::size_t at[16];
     for (std::size_t y0 = 0; y0 < rows; y0 += tile_h)
         for (std::size_t x0 = 0; x0 < width; x0 += tile_w) {
             unsigned k = 0;
@@ -409,7 +650,10 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
                     at[k++] = i;
                 }
             if (k == 0u) continue;
-            svo_trace_packet8(words, tree, in, out, k);
+            if (wide)
+                svo_trace_packet16(words, tree, in, out, k);
+            else
+                svo_trace_packet8(words, tree, in, out, k);
             for (unsigned j = 0; j < k; ++j) hits[at[j]] = out[j];
         }
 }
