@@ -201,34 +201,47 @@ inline uint32_t node_mask(const uint32_t* words, const rk_svo_tree& tree, const 
     return ((e.handle < 4u ? w.bmx : w.bmy) >> (8u * (e.handle & 3u))) & 0xFFu;
 }
 
-// The hit of lane i of set-up `S` (Setup or Setup16) in mirrored child k of node `e`, entered at lo.
+// The hits of the lanes `hm` of set-up `S` (Setup or Setup16) in the children of node `e`: lane i
+// entered mirrored child k_out[i] at lo_out[i].
 template <class SetupT>
-inline void finish_lane(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, int i, int k, float lo, const Entry& e,
-                        uint32_t flip, uint32_t pdesc, uint32_t m8, const WalkCtx& w, uint32_t iter, rk_svo_trace_hit& hit)
+inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, unsigned hm, const int32_t* k_out,
+                        const float* lo_out, const Entry& e, uint32_t flip, uint32_t pdesc, uint32_t m8, const WalkCtx& w,
+                        uint32_t iter, rk_svo_trace_hit* hits)
 {
-    const uint32_t Lc = e.level + 1u;
-    const float half = uintBitsToFloat((126u - e.level) << 23u);  // 2^-(L+1)
-    rk_svo_trace_state_ s;
-    s.u = glm::vec3(S.ux[i], S.uy[i], S.uz[i]);
-    s.coef = glm::vec3(S.cx[i], S.cy[i], S.cz[i]);
-    s.bias = glm::vec3(S.bx[i], S.by[i], S.bz[i]);
-    s.flip = flip;
-    s.t_enter = S.t_enter[i];
-    s.t_scale = S.t_scale[i];
-    s.b = w.b;
-    s.top = w.top;
-    s.leaf = w.leaf;
-    s.pos = glm::vec3(e.px + half * float(k & 1), e.py + half * float((k >> 1) & 1), e.pz + half * float((k >> 2) & 1));
-    s.size = half;
-    s.scale = 23 - int(Lc);
-    s.idx = uint32_t(k);
-    s.t_min = lo;
-    s.pdesc = pdesc;
-    s.pmask = m8;
-    s.handle = e.handle;
-    s.bmask = glm::uvec2(w.bmx, w.bmy);
-    s.brick = w.brick;
-    rk_svo_trace_finish_(words, tree, s, true, iter, hit);
+    for (unsigned m = hm; m != 0u; m &= m - 1u) {
+        const int i = svo_rays_detail::lowest_bit(m);
+        const int k = k_out[i];
+        const uint32_t Lc = e.level + 1u;
+        const float half = uintBitsToFloat((126u - e.level) << 23u);  // 2^-(L+1)
+        rk_svo_trace_state_ s;
+        s.u = glm::vec3(S.ux[i], S.uy[i], S.uz[i]);
+        s.coef = glm::vec3(S.cx[i], S.cy[i], S.cz[i]);
+        s.bias = glm::vec3(S.bx[i], S.by[i], S.bz[i]);
+        s.flip = flip;
+        s.t_enter = S.t_enter[i];
+        s.t_scale = S.t_scale[i];
+        s.b = w.b;
+        s.top = w.top;
+        s.leaf = w.leaf;
+        s.pos = glm::vec3(e.px + half * float(k & 1), e.py + half * float((k >> 1) & 1), e.pz + half * float((k >> 2) & 1));
+        s.size = half;
+        s.scale = 23 - int(Lc);
+        s.idx = uint32_t(k);
+        s.t_min = lo_out[i];
+        s.pdesc = pdesc;
+        s.pmask = m8;
+        s.handle = e.handle;
+        s.bmask = glm::uvec2(w.bmx, w.bmy);
+        s.brick = w.brick;
+        rk_svo_trace_finish_(words, tree, s, true, iter, hits[i]);
+    }
+}
+
+// The end of a walk: the unanswered rays get the node count; returns those the node bound stopped.
+inline unsigned end_walk(unsigned active, uint32_t iter, bool bounded, rk_svo_trace_hit* hits)
+{
+    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
+    return bounded ? active : 0u;
 }
 
 // The first child's handle of an inner node above the bricks (0 inside a brick).
@@ -359,10 +372,7 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
             if (hm == 0u) continue;
             _mm256_store_si256(reinterpret_cast<__m256i*>(k_out), hk);
             _mm256_store_ps(lo_out, hlo);
-            for (unsigned m = hm; m != 0u; m &= m - 1u) {
-                const int i = svo_rays_detail::lowest_bit(m);
-                finish_lane(words, tree, S, i, k_out[i], lo_out[i], e, flip, pdesc, m8, w, iter, hits[i]);
-            }
+            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
             active &= ~hm;
             continue;
         }
@@ -376,8 +386,7 @@ RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tr
                        static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ))) & R);
         }
     }
-    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
-    return bounded ? active : 0u;
+    return end_walk(active, iter, bounded, hits);
 }
 
 // 16-ray packets (4x4 tiles) on AVX-512 lanes, GCC and Clang: the same walk on one 16-lane register
@@ -510,10 +519,7 @@ RK_SVO_PACKET16_TARGET inline unsigned walk16(const uint32_t* words, const rk_sv
             if (hm == 0u) continue;
             _mm512_store_si512(k_out, hk);
             _mm512_store_ps(lo_out, hlo);
-            for (unsigned m = hm; m != 0u; m &= m - 1u) {
-                const int i = svo_rays_detail::lowest_bit(m);
-                finish_lane(words, tree, S, i, k_out[i], lo_out[i], e, flip, pdesc, m8, w, iter, hits[i]);
-            }
+            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
             active &= ~hm;
             continue;
         }
@@ -525,8 +531,7 @@ RK_SVO_PACKET16_TARGET inline unsigned walk16(const uint32_t* words, const rk_sv
             push_child(stack, sp, e, k, flip, m8, first, w, static_cast<unsigned>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ)) & R);
         }
     }
-    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
-    return bounded ? active : 0u;
+    return end_walk(active, iter, bounded, hits);
 }
 #else
 #define RK_SVO_PACKET16 0
