@@ -269,125 +269,50 @@ inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t fl
     sp += cm != 0u ? 1 : 0;
 }
 
-// A cell's interval [lo, hi) is closed at the ray's end (rk_svo_trace enters a cell at t <= t_hi,
-// its root exit or t limit): an exit at or beyond t_hi becomes next_up(t_hi).
-RK_SVO_PACKET_TARGET inline __m256 close_end(__m256 hi, __m256 t_hi, __m256 t_hi_up)
-{
-    return _mm256_blendv_ps(hi, t_hi_up, _mm256_cmp_ps(hi, t_hi, _CMP_GE_OQ));
-}
-
-// The walk of one packet: `lanes` are rays whose st[i] came out of rk_svo_trace_begin_ with one
-// and the same `flip`. Answers hits[i] for them; returns the lanes still unanswered when the node
-// bound was reached (0 normally).
-RK_SVO_PACKET_TARGET inline unsigned walk(const uint32_t* words, const rk_svo_tree& tree, const Setup& S, unsigned lanes,
-                                          uint32_t flip, rk_svo_trace_hit* hits)
-{
-    // Lanes outside `lanes` get planes that no cell interval reaches (and their bits are masked).
-    const __m256 lm = _mm256_castsi256_ps(svo_rays_detail::ne0(
-        _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(lanes)), _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128))));
-    const __m256 m1 = _mm256_set1_ps(-1.0f), z = _mm256_setzero_ps();
-    const __m256 Cx = _mm256_blendv_ps(m1, _mm256_load_ps(S.cx), lm), Cy = _mm256_blendv_ps(m1, _mm256_load_ps(S.cy), lm),
-                 Cz = _mm256_blendv_ps(m1, _mm256_load_ps(S.cz), lm);
-    const __m256 Bx = _mm256_blendv_ps(z, _mm256_load_ps(S.bx), lm), By = _mm256_blendv_ps(z, _mm256_load_ps(S.by), lm),
-                 Bz = _mm256_blendv_ps(z, _mm256_load_ps(S.bz), lm);
-    const __m256 T0 = _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_load_ps(S.t_min), lm);
-    const __m256 TH = _mm256_blendv_ps(z, _mm256_load_ps(S.t_hi), lm);
-    // lo <= t_hi  <=>  lo < next_up(t_hi): the next float up (t_hi may be slightly negative for a
-    // ray that only touches the root; +-0 goes to the smallest denormal).
-    const __m256i thb = _mm256_castps_si256(TH);
-    const __m256i up = _mm256_add_epi32(thb, _mm256_blendv_epi8(_mm256_set1_epi32(-1), _mm256_set1_epi32(1),
-                                                                 _mm256_castps_si256(_mm256_cmp_ps(TH, z, _CMP_GT_OQ))));
-    const __m256 TL = _mm256_blendv_ps(
-        z, _mm256_blendv_ps(_mm256_castsi256_ps(up), _mm256_castsi256_ps(_mm256_set1_epi32(1)), _mm256_cmp_ps(TH, z, _CMP_EQ_OQ)), lm);
-
-    WalkCtx w = walk_ctx(tree);
-    Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
-    int sp = 0;
-    stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
-    unsigned active = lanes;
-    uint32_t iter = 0u;
-    alignas(32) float lo_out[8];
-    alignas(32) int32_t k_out[8];
-    bool bounded = false;
-    while (sp > 0) {
-        const Entry e = stack[--sp];
-        unsigned R = e.rays & active;
-        if (R == 0u) continue;
-        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
-            bounded = true;
-            break;
-        }
-        ++iter;
-        // The node's child mask (format slots) and what the hit of a child needs.
-        const uint32_t L = e.level;
-        uint32_t pdesc;
-        const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
-        const uint32_t mm = mirror_mask(m8, flip);
-        // Plane distances of the node's exit (min corner), middle and entry (max corner) planes.
-        const float size = uintBitsToFloat((127u - L) << 23u);  // 2^-L
-        const float half = 0.5f * size;
-        const __m256 Px = _mm256_set1_ps(e.px), Py = _mm256_set1_ps(e.py), Pz = _mm256_set1_ps(e.pz);
-        const __m256 Xx0 = _mm256_sub_ps(_mm256_mul_ps(Px, Cx), Bx);
-        const __m256 Xy0 = _mm256_sub_ps(_mm256_mul_ps(Py, Cy), By);
-        const __m256 Xz0 = _mm256_sub_ps(_mm256_mul_ps(Pz, Cz), Bz);
-        const __m256 Mx = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.px + half), Cx), Bx);
-        const __m256 My = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.py + half), Cy), By);
-        const __m256 Mz = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.pz + half), Cz), Bz);
-        const __m256 Ex1 = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.px + size), Cx), Bx);
-        const __m256 Ey1 = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.py + size), Cy), By);
-        const __m256 Ez1 = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(e.pz + size), Cz), Bz);
-        // Child slot k (mirrored; bit set = upper half): entry planes E_a = k_a ? entry : middle,
-        // exit planes X_a = k_a ? middle : exit. lo = max(A[k & 3], B[k >> 2]), hi = min(C[k & 3], D[k >> 2]).
-        __m256 A[4], Bk[2], C[4], D[2];
-        A[0] = _mm256_max_ps(Mx, My);
-        A[1] = _mm256_max_ps(Ex1, My);
-        A[2] = _mm256_max_ps(Mx, Ey1);
-        A[3] = _mm256_max_ps(Ex1, Ey1);
-        Bk[0] = _mm256_max_ps(Mz, T0);
-        Bk[1] = _mm256_max_ps(Ez1, T0);
-        C[0] = _mm256_min_ps(Xx0, Xy0);
-        C[1] = _mm256_min_ps(Mx, Xy0);
-        C[2] = _mm256_min_ps(Xx0, My);
-        C[3] = _mm256_min_ps(Mx, My);
-        D[0] = _mm256_min_ps(Xz0, TL);
-        D[1] = _mm256_min_ps(Mz, TL);
-        if (L + 1u >= w.leaf) {
-            // The children are answers: the first a ray reaches in front-to-back order is its hit
-            // (chosen on the lanes, no branch per child; then one finish per ray that hit).
-            const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-            __m256i left = svo_rays_detail::ne0(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(R)), lane_bit));
-            __m256i hk = _mm256_setzero_si256();
-            __m256 hlo = _mm256_setzero_ps();
-            for (uint32_t rest = mm; rest != 0u;) {
-                const int k = highest_bit(rest);
-                rest &= ~(1u << k);
-                const __m256 lo = _mm256_max_ps(A[k & 3], Bk[k >> 2]);
-                const __m256 hi = close_end(_mm256_min_ps(C[k & 3], D[k >> 2]), TH, TL);
-                const __m256i in = _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ)), left);
-                hk = _mm256_blendv_epi8(hk, _mm256_set1_epi32(k), in);
-                hlo = _mm256_blendv_ps(hlo, lo, _mm256_castsi256_ps(in));
-                left = _mm256_andnot_si256(in, left);
-            }
-            const unsigned hm = R & ~static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(left)));
-            if (hm == 0u) continue;
-            _mm256_store_si256(reinterpret_cast<__m256i*>(k_out), hk);
-            _mm256_store_ps(lo_out, hlo);
-            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
-            active &= ~hm;
-            continue;
-        }
-        // Inner children: pushed back to front (the first to visit on top).
-        const uint32_t first = first_child(words, e, pdesc, w);
-        for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
-            const int k = svo_rays_detail::lowest_bit(rest);
-            const __m256 lo = _mm256_max_ps(A[k & 3], Bk[k >> 2]);
-            const __m256 hi = close_end(_mm256_min_ps(C[k & 3], D[k >> 2]), TH, TL);
-            push_child(stack, sp, e, k, flip, m8, first, w,
-                       static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ))) & R);
-        }
+// The lanes of a packet, as the walk (detail/svo_packet_walk.inl) uses them: V the planes, M a
+// lane mask, I the lanes' child slots. 8 lanes on AVX2, masks as vectors.
+struct Lanes8 {
+    using V = __m256;
+    using M = __m256i;
+    using I = __m256i;
+    static constexpr int N = 8;
+    RK_SVO_PACKET_TARGET static V load(const float* p) { return _mm256_load_ps(p); }
+    RK_SVO_PACKET_TARGET static V set1(float x) { return _mm256_set1_ps(x); }
+    RK_SVO_PACKET_TARGET static V zero() { return _mm256_setzero_ps(); }
+    RK_SVO_PACKET_TARGET static I zero_i() { return _mm256_setzero_si256(); }
+    RK_SVO_PACKET_TARGET static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+    RK_SVO_PACKET_TARGET static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+    RK_SVO_PACKET_TARGET static V max(V a, V b) { return _mm256_max_ps(a, b); }  // a > b ? a : b
+    RK_SVO_PACKET_TARGET static V min(V a, V b) { return _mm256_min_ps(a, b); }  // a < b ? a : b
+    // hi >= t_hi becomes t_hi_up.
+    RK_SVO_PACKET_TARGET static V close_end(V hi, V t_hi, V t_hi_up) { return _mm256_blendv_ps(hi, t_hi_up, _mm256_cmp_ps(hi, t_hi, _CMP_GE_OQ)); }
+    // The next float up (+-0: the smallest denormal).
+    RK_SVO_PACKET_TARGET static V next_up(V x)
+    {
+        const V z = _mm256_setzero_ps();
+        const __m256i up = _mm256_add_epi32(_mm256_castps_si256(x), _mm256_blendv_epi8(_mm256_set1_epi32(-1), _mm256_set1_epi32(1),
+                                                                                      _mm256_castps_si256(_mm256_cmp_ps(x, z, _CMP_GT_OQ))));
+        return _mm256_blendv_ps(_mm256_castsi256_ps(up), _mm256_castsi256_ps(_mm256_set1_epi32(1)), _mm256_cmp_ps(x, z, _CMP_EQ_OQ));
     }
-    return end_walk(active, iter, bounded, hits);
-}
+    RK_SVO_PACKET_TARGET static M mask_of(unsigned m)
+    {
+        return svo_rays_detail::ne0(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(m)), _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)));
+    }
+    RK_SVO_PACKET_TARGET static M lt_and(V a, V b, M m) { return _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(a, b, _CMP_LT_OQ)), m); }
+    RK_SVO_PACKET_TARGET static unsigned lt_bits(V a, V b) { return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LT_OQ))); }
+    RK_SVO_PACKET_TARGET static M and_not(M a, M b) { return _mm256_andnot_si256(a, b); }  // b & ~a
+    RK_SVO_PACKET_TARGET static unsigned bits(M m) { return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(m))); }
+    RK_SVO_PACKET_TARGET static I blend_k(M m, I a, int k) { return _mm256_blendv_epi8(a, _mm256_set1_epi32(k), m); }
+    RK_SVO_PACKET_TARGET static V blend(M m, V a, V b) { return _mm256_blendv_ps(a, b, _mm256_castsi256_ps(m)); }
+    RK_SVO_PACKET_TARGET static void store(float* p, V v) { _mm256_store_ps(p, v); }
+    RK_SVO_PACKET_TARGET static void store_i(int32_t* p, I v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
+};
+
+#define RK_SVO_PW_NAME walk
+#define RK_SVO_PW_TARGET RK_SVO_PACKET_TARGET
+#define RK_SVO_PW_LANES Lanes8
+#define RK_SVO_PW_SETUP Setup
+#include "raykit/detail/svo_packet_walk.inl"
 
 // 16-ray packets (4x4 tiles) on AVX-512 lanes, GCC and Clang: the same walk on one 16-lane register
 // (the same expressions per lane, so the same answers). Two 8-lane AVX2 halves were measured no
@@ -429,110 +354,49 @@ inline void setup16(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Set
     S.valid = h[0].valid | (h[1].valid << 8u);
 }
 
-// max and min through the zero-masking forms: GCC 12's plain _mm512_max_ps passes an undefined
-// source that -Wmaybe-uninitialized reports in users' builds (the same instruction either way).
-RK_SVO_PACKET16_TARGET inline __m512 max16(__m512 a, __m512 b) { return _mm512_maskz_max_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
-RK_SVO_PACKET16_TARGET inline __m512 min16(__m512 a, __m512 b) { return _mm512_maskz_min_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
-
-RK_SVO_PACKET16_TARGET inline __m512 close_end16(__m512 hi, __m512 t_hi, __m512 t_hi_up)
-{
-    return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(hi, t_hi, _CMP_GE_OQ), hi, t_hi_up);
-}
-
-// walk() on 16 lanes: its comments apply.
-RK_SVO_PACKET16_TARGET inline unsigned walk16(const uint32_t* words, const rk_svo_tree& tree, const Setup16& S, unsigned lanes,
-                                              uint32_t flip, rk_svo_trace_hit* hits)
-{
-    const __mmask16 lm = static_cast<__mmask16>(lanes);
-    const __m512 m1 = _mm512_set1_ps(-1.0f), z = _mm512_setzero_ps();
-    const __m512 Cx = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cx)), Cy = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cy)),
-                 Cz = _mm512_mask_blend_ps(lm, m1, _mm512_load_ps(S.cz));
-    const __m512 Bx = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.bx)), By = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.by)),
-                 Bz = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.bz));
-    const __m512 T0 = _mm512_mask_blend_ps(lm, _mm512_set1_ps(1.0f), _mm512_load_ps(S.t_min));
-    const __m512 TH = _mm512_mask_blend_ps(lm, z, _mm512_load_ps(S.t_hi));
-    const __m512i up = _mm512_add_epi32(_mm512_castps_si512(TH), _mm512_mask_blend_epi32(_mm512_cmp_ps_mask(TH, z, _CMP_GT_OQ),
-                                                                                          _mm512_set1_epi32(-1), _mm512_set1_epi32(1)));
-    const __m512 TL = _mm512_mask_blend_ps(lm, z,
-                                           _mm512_mask_blend_ps(_mm512_cmp_ps_mask(TH, z, _CMP_EQ_OQ), _mm512_castsi512_ps(up),
-                                                                _mm512_castsi512_ps(_mm512_set1_epi32(1))));
-    WalkCtx w = walk_ctx(tree);
-    Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
-    int sp = 0;
-    stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
-    unsigned active = lanes;
-    uint32_t iter = 0u;
-    alignas(64) float lo_out[16];
-    alignas(64) int32_t k_out[16];
-    bool bounded = false;
-    while (sp > 0) {
-        const Entry e = stack[--sp];
-        const unsigned R = e.rays & active;
-        if (R == 0u) continue;
-        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
-            bounded = true;
-            break;
-        }
-        ++iter;
-        uint32_t pdesc;
-        const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
-        const uint32_t mm = mirror_mask(m8, flip);
-        const float size = uintBitsToFloat((127u - e.level) << 23u);
-        const float half = 0.5f * size;
-        const __m512 Xx0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px), Cx), Bx);
-        const __m512 Xy0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py), Cy), By);
-        const __m512 Xz0 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz), Cz), Bz);
-        const __m512 Mx = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px + half), Cx), Bx);
-        const __m512 My = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py + half), Cy), By);
-        const __m512 Mz = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz + half), Cz), Bz);
-        const __m512 Ex1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.px + size), Cx), Bx);
-        const __m512 Ey1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.py + size), Cy), By);
-        const __m512 Ez1 = _mm512_sub_ps(_mm512_mul_ps(_mm512_set1_ps(e.pz + size), Cz), Bz);
-        __m512 A[4], Bk[2], C[4], D[2];
-        A[0] = max16(Mx, My);
-        A[1] = max16(Ex1, My);
-        A[2] = max16(Mx, Ey1);
-        A[3] = max16(Ex1, Ey1);
-        Bk[0] = max16(Mz, T0);
-        Bk[1] = max16(Ez1, T0);
-        C[0] = min16(Xx0, Xy0);
-        C[1] = min16(Mx, Xy0);
-        C[2] = min16(Xx0, My);
-        C[3] = min16(Mx, My);
-        D[0] = min16(Xz0, TL);
-        D[1] = min16(Mz, TL);
-        if (e.level + 1u >= w.leaf) {
-            __mmask16 left = static_cast<__mmask16>(R);
-            __m512i hk = _mm512_setzero_si512();
-            __m512 hlo = _mm512_setzero_ps();
-            for (uint32_t rest = mm; rest != 0u;) {
-                const int k = highest_bit(rest);
-                rest &= ~(1u << k);
-                const __m512 lo = max16(A[k & 3], Bk[k >> 2]);
-                const __m512 hi = close_end16(min16(C[k & 3], D[k >> 2]), TH, TL);
-                const __mmask16 in = static_cast<__mmask16>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ) & left);
-                hk = _mm512_mask_blend_epi32(in, hk, _mm512_set1_epi32(k));
-                hlo = _mm512_mask_blend_ps(in, hlo, lo);
-                left = static_cast<__mmask16>(left & ~in);
-            }
-            const unsigned hm = R & ~static_cast<unsigned>(left);
-            if (hm == 0u) continue;
-            _mm512_store_si512(k_out, hk);
-            _mm512_store_ps(lo_out, hlo);
-            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
-            active &= ~hm;
-            continue;
-        }
-        const uint32_t first = first_child(words, e, pdesc, w);
-        for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
-            const int k = svo_rays_detail::lowest_bit(rest);
-            const __m512 lo = max16(A[k & 3], Bk[k >> 2]);
-            const __m512 hi = close_end16(min16(C[k & 3], D[k >> 2]), TH, TL);
-            push_child(stack, sp, e, k, flip, m8, first, w, static_cast<unsigned>(_mm512_cmp_ps_mask(lo, hi, _CMP_LT_OQ)) & R);
-        }
+// Lanes8's operations on 16 lanes of AVX-512 registers, masks in mask registers. max and min take
+// the zero-masking forms: GCC 12's plain _mm512_max_ps passes an undefined source that
+// -Wmaybe-uninitialized reports in users' builds (the same instruction either way).
+struct Lanes16 {
+    using V = __m512;
+    using M = __mmask16;
+    using I = __m512i;
+    static constexpr int N = 16;
+    RK_SVO_PACKET16_TARGET static V load(const float* p) { return _mm512_load_ps(p); }
+    RK_SVO_PACKET16_TARGET static V set1(float x) { return _mm512_set1_ps(x); }
+    RK_SVO_PACKET16_TARGET static V zero() { return _mm512_setzero_ps(); }
+    RK_SVO_PACKET16_TARGET static I zero_i() { return _mm512_setzero_si512(); }
+    RK_SVO_PACKET16_TARGET static V mul(V a, V b) { return _mm512_mul_ps(a, b); }
+    RK_SVO_PACKET16_TARGET static V sub(V a, V b) { return _mm512_sub_ps(a, b); }
+    RK_SVO_PACKET16_TARGET static V max(V a, V b) { return _mm512_maskz_max_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
+    RK_SVO_PACKET16_TARGET static V min(V a, V b) { return _mm512_maskz_min_ps(static_cast<__mmask16>(0xFFFFu), a, b); }
+    RK_SVO_PACKET16_TARGET static V close_end(V hi, V t_hi, V t_hi_up)
+    {
+        return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(hi, t_hi, _CMP_GE_OQ), hi, t_hi_up);
     }
-    return end_walk(active, iter, bounded, hits);
-}
+    RK_SVO_PACKET16_TARGET static V next_up(V x)
+    {
+        const V z = _mm512_setzero_ps();
+        const __m512i up = _mm512_add_epi32(_mm512_castps_si512(x), _mm512_mask_blend_epi32(_mm512_cmp_ps_mask(x, z, _CMP_GT_OQ),
+                                                                                            _mm512_set1_epi32(-1), _mm512_set1_epi32(1)));
+        return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(x, z, _CMP_EQ_OQ), _mm512_castsi512_ps(up), _mm512_castsi512_ps(_mm512_set1_epi32(1)));
+    }
+    static M mask_of(unsigned m) { return static_cast<__mmask16>(m); }
+    RK_SVO_PACKET16_TARGET static M lt_and(V a, V b, M m) { return static_cast<__mmask16>(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ) & m); }
+    RK_SVO_PACKET16_TARGET static unsigned lt_bits(V a, V b) { return static_cast<unsigned>(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ)); }
+    static M and_not(M a, M b) { return static_cast<__mmask16>(b & ~a); }
+    static unsigned bits(M m) { return static_cast<unsigned>(m); }
+    RK_SVO_PACKET16_TARGET static I blend_k(M m, I a, int k) { return _mm512_mask_blend_epi32(m, a, _mm512_set1_epi32(k)); }
+    RK_SVO_PACKET16_TARGET static V blend(M m, V a, V b) { return _mm512_mask_blend_ps(m, a, b); }
+    RK_SVO_PACKET16_TARGET static void store(float* p, V v) { _mm512_store_ps(p, v); }
+    RK_SVO_PACKET16_TARGET static void store_i(int32_t* p, I v) { _mm512_store_si512(p, v); }
+};
+
+#define RK_SVO_PW_NAME walk16
+#define RK_SVO_PW_TARGET RK_SVO_PACKET16_TARGET
+#define RK_SVO_PW_LANES Lanes16
+#define RK_SVO_PW_SETUP Setup16
+#include "raykit/detail/svo_packet_walk.inl"
 #else
 #define RK_SVO_PACKET16 0
 #endif

@@ -1,0 +1,120 @@
+// raykit — detail/svo_packet_walk.inl: the walk of one packet of svo_trace_packet.hpp, one text
+// for every lane width. svo_trace_packet.hpp includes it once per width, with
+//   RK_SVO_PW_NAME    the function's name,
+//   RK_SVO_PW_TARGET  its target attribute (the lanes' instruction set),
+//   RK_SVO_PW_LANES   the lane traits (Lanes8: AVX2, Lanes16: AVX-512; see svo_trace_packet.hpp),
+//   RK_SVO_PW_SETUP   the set-up type (Setup, Setup16),
+// defined, and undefines them after. Not a header of its own: no include guard on purpose.
+
+// The walk of one packet: `lanes` are rays whose set-up came out of rk_svo_trace_begin_'s twin with
+// one and the same `flip`. Answers hits[i] for them; returns the lanes still unanswered when the node
+// bound was reached (0 normally).
+RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_svo_tree& tree, const RK_SVO_PW_SETUP& S,
+                                                unsigned lanes, uint32_t flip, rk_svo_trace_hit* hits)
+{
+    using L = RK_SVO_PW_LANES;
+    using V = typename L::V;
+    using M = typename L::M;
+    using I = typename L::I;
+    // Lanes outside `lanes` get planes that no cell interval reaches (and their bits are masked).
+    // A cell's interval [lo, hi) is closed at the ray's end (rk_svo_trace enters a cell at
+    // t <= t_hi, its root exit or t limit): lo <= t_hi <=> lo < next_up(t_hi), the next float up
+    // (t_hi may be slightly negative for a ray that only touches the root; +-0 goes to the smallest
+    // denormal), and an exit at or beyond t_hi becomes next_up(t_hi) (L::close_end).
+    const M lm = L::mask_of(lanes);
+    const V m1 = L::set1(-1.0f), z = L::zero();
+    const V Cx = L::blend(lm, m1, L::load(S.cx)), Cy = L::blend(lm, m1, L::load(S.cy)), Cz = L::blend(lm, m1, L::load(S.cz));
+    const V Bx = L::blend(lm, z, L::load(S.bx)), By = L::blend(lm, z, L::load(S.by)), Bz = L::blend(lm, z, L::load(S.bz));
+    const V T0 = L::blend(lm, L::set1(1.0f), L::load(S.t_min));
+    const V TH = L::blend(lm, z, L::load(S.t_hi));
+    const V TL = L::blend(lm, z, L::next_up(TH));
+
+    WalkCtx w = walk_ctx(tree);
+    Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
+    int sp = 0;
+    stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
+    unsigned active = lanes;
+    uint32_t iter = 0u;
+    alignas(64) float lo_out[L::N];
+    alignas(64) int32_t k_out[L::N];
+    bool bounded = false;
+    while (sp > 0) {
+        const Entry e = stack[--sp];
+        const unsigned R = e.rays & active;
+        if (R == 0u) continue;
+        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+            bounded = true;
+            break;
+        }
+        ++iter;
+        // The node's child mask (format slots) and what the hit of a child needs.
+        uint32_t pdesc;
+        const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
+        const uint32_t mm = mirror_mask(m8, flip);
+        // Plane distances of the node's exit (min corner), middle and entry (max corner) planes.
+        const float size = uintBitsToFloat((127u - e.level) << 23u);  // 2^-level
+        const float half = 0.5f * size;
+        const V Xx0 = L::sub(L::mul(L::set1(e.px), Cx), Bx);
+        const V Xy0 = L::sub(L::mul(L::set1(e.py), Cy), By);
+        const V Xz0 = L::sub(L::mul(L::set1(e.pz), Cz), Bz);
+        const V Mx = L::sub(L::mul(L::set1(e.px + half), Cx), Bx);
+        const V My = L::sub(L::mul(L::set1(e.py + half), Cy), By);
+        const V Mz = L::sub(L::mul(L::set1(e.pz + half), Cz), Bz);
+        const V Ex1 = L::sub(L::mul(L::set1(e.px + size), Cx), Bx);
+        const V Ey1 = L::sub(L::mul(L::set1(e.py + size), Cy), By);
+        const V Ez1 = L::sub(L::mul(L::set1(e.pz + size), Cz), Bz);
+        // Child slot k (mirrored; bit set = upper half): entry planes E_a = k_a ? entry : middle,
+        // exit planes X_a = k_a ? middle : exit. lo = max(A[k & 3], B[k >> 2]), hi = min(C[k & 3], D[k >> 2]).
+        V A[4], Bk[2], C[4], D[2];
+        A[0] = L::max(Mx, My);
+        A[1] = L::max(Ex1, My);
+        A[2] = L::max(Mx, Ey1);
+        A[3] = L::max(Ex1, Ey1);
+        Bk[0] = L::max(Mz, T0);
+        Bk[1] = L::max(Ez1, T0);
+        C[0] = L::min(Xx0, Xy0);
+        C[1] = L::min(Mx, Xy0);
+        C[2] = L::min(Xx0, My);
+        C[3] = L::min(Mx, My);
+        D[0] = L::min(Xz0, TL);
+        D[1] = L::min(Mz, TL);
+        if (e.level + 1u >= w.leaf) {
+            // The children are answers: the first a ray reaches in front-to-back order is its hit
+            // (chosen on the lanes, no branch per child; then one finish per ray that hit).
+            M left = L::mask_of(R);
+            I hk = L::zero_i();
+            V hlo = L::zero();
+            for (uint32_t rest = mm; rest != 0u;) {
+                const int k = highest_bit(rest);
+                rest &= ~(1u << k);
+                const V lo = L::max(A[k & 3], Bk[k >> 2]);
+                const V hi = L::close_end(L::min(C[k & 3], D[k >> 2]), TH, TL);
+                const M in = L::lt_and(lo, hi, left);
+                hk = L::blend_k(in, hk, k);
+                hlo = L::blend(in, hlo, lo);
+                left = L::and_not(in, left);
+            }
+            const unsigned hm = R & ~L::bits(left);
+            if (hm == 0u) continue;
+            L::store_i(k_out, hk);
+            L::store(lo_out, hlo);
+            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
+            active &= ~hm;
+            continue;
+        }
+        // Inner children: pushed back to front (the first to visit on top).
+        const uint32_t first = first_child(words, e, pdesc, w);
+        for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
+            const int k = svo_rays_detail::lowest_bit(rest);
+            const V lo = L::max(A[k & 3], Bk[k >> 2]);
+            const V hi = L::close_end(L::min(C[k & 3], D[k >> 2]), TH, TL);
+            push_child(stack, sp, e, k, flip, m8, first, w, L::lt_bits(lo, hi) & R);
+        }
+    }
+    return end_walk(active, iter, bounded, hits);
+}
+
+#undef RK_SVO_PW_NAME
+#undef RK_SVO_PW_TARGET
+#undef RK_SVO_PW_LANES
+#undef RK_SVO_PW_SETUP
