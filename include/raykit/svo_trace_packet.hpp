@@ -18,12 +18,15 @@
 // then accepted by the float64 dense-grid DDA (tests/test_svo_trace_packet.cpp). `iterations` is
 // the number of nodes the packet expanded until that ray was answered, not rk_svo_trace's count.
 // Rays of different octants in one packet are traced as one packet per octant. A packet that
-// expands more than RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. LOD
-// builds (RK_SVO_TRAVERSE_LOD=1), CPUs without AVX2 and POPCNT, trees of 2^31 words or more and
-// max_level 0 use rk_svo_trace per ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as
-// two 8-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
+// expands more than RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. In a
+// LOD build (RK_SVO_TRAVERSE_LOD=1) each lane tests rk_svo_trace's footprint stop on the children
+// it enters; a ray stopped at a child is answered when the walk reaches that child (front to back).
+// CPUs without AVX2 and POPCNT, trees of 2^31 words or more and max_level 0 use rk_svo_trace per
+// ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones, with the same
+// answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
-// not much smaller than a voxel; measured speed-ups by depth and tile are in docs/svo-traverse.md.
+// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); measured
+// speed-ups by depth and tile are in docs/svo-traverse.md.
 #pragma once
 
 #include <cstddef>
@@ -38,7 +41,7 @@ inline namespace RK_SVO_RAYS_NS_CAT(RK_SVO_RAYS_SIMD) {
 
 namespace svo_packet_detail {
 
-#if RK_SVO_RAYS_SIMD && !RK_SVO_TRAVERSE_LOD
+#if RK_SVO_RAYS_SIMD
 #define RK_SVO_PACKET_SIMD 1
 #else
 #define RK_SVO_PACKET_SIMD 0
@@ -61,6 +64,7 @@ struct alignas(32) Setup {
     float t_min[8], t_hi[8], t_enter[8], t_scale[8];
     int32_t flip[8];
     unsigned valid;
+    float lod_bias, lod_slope;  // rk_svo_trace_begin_'s, in a LOD build (set by set_lod)
 };
 
 RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Setup& S)
@@ -140,12 +144,20 @@ RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* r
 }
 
 // A node to visit: its mirrored minimum corner, level, handle (descriptor or brick ordinal, or the
-// sub-node's slot inside the current brick) and the rays that reach it.
+// sub-node's slot inside the current brick) and the rays that reach it. In a LOD build also the rays
+// whose footprint stops them at this node, and what their hit needs of the parent (its handle,
+// descriptor, child mask, and the node's mirrored slot in it).
 struct Entry {
     float px, py, pz;
     uint32_t level;
     uint32_t handle;
     uint32_t rays;
+#if RK_SVO_TRAVERSE_LOD
+    uint32_t stops;
+    uint32_t phandle;
+    uint32_t ppdesc;
+    uint32_t pslot;  // the slot k | the parent's child mask << 8
+#endif
 };
 
 // Child mask in mirrored slots: bit k = bit (k ^ flip) of m.
@@ -253,9 +265,9 @@ inline uint32_t first_child(const uint32_t* words, const Entry& e, uint32_t pdes
 }
 
 // Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
-// branch per child).
+// branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
 inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
-                       unsigned cm)
+                       unsigned cm, unsigned stops, uint32_t pdesc)
 {
     const float half = uintBitsToFloat((126u - e.level) << 23u);
     const uint32_t c = uint32_t(k) ^ flip;
@@ -266,6 +278,15 @@ inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t fl
     ch.level = e.level + 1u;
     ch.handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
     ch.rays = cm;
+#if RK_SVO_TRAVERSE_LOD
+    ch.stops = stops;
+    ch.phandle = e.handle;
+    ch.ppdesc = pdesc;
+    ch.pslot = uint32_t(k) | (m8 << 8u);
+#else
+    (void)stops;
+    (void)pdesc;
+#endif
     sp += cm != 0u ? 1 : 0;
 }
 
@@ -300,6 +321,8 @@ struct Lanes8 {
     }
     RK_SVO_PACKET_TARGET static M lt_and(V a, V b, M m) { return _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(a, b, _CMP_LT_OQ)), m); }
     RK_SVO_PACKET_TARGET static unsigned lt_bits(V a, V b) { return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LT_OQ))); }
+    RK_SVO_PACKET_TARGET static unsigned le_bits(V a, V b) { return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ))); }
+    RK_SVO_PACKET_TARGET static V add(V a, V b) { return _mm256_add_ps(a, b); }
     RK_SVO_PACKET_TARGET static M and_not(M a, M b) { return _mm256_andnot_si256(a, b); }  // b & ~a
     RK_SVO_PACKET_TARGET static unsigned bits(M m) { return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(m))); }
     RK_SVO_PACKET_TARGET static I blend_k(M m, I a, int k) { return _mm256_blendv_epi8(a, _mm256_set1_epi32(k), m); }
@@ -334,6 +357,7 @@ struct alignas(64) Setup16 {
     float t_min[16], t_hi[16], t_enter[16], t_scale[16];
     int32_t flip[16];
     unsigned valid;
+    float lod_bias, lod_slope;
 };
 
 // Two 8-ray set-ups side by side (lanes of an absent half are invalid).
@@ -384,6 +408,8 @@ struct Lanes16 {
     static M mask_of(unsigned m) { return static_cast<__mmask16>(m); }
     RK_SVO_PACKET16_TARGET static M lt_and(V a, V b, M m) { return static_cast<__mmask16>(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ) & m); }
     RK_SVO_PACKET16_TARGET static unsigned lt_bits(V a, V b) { return static_cast<unsigned>(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ)); }
+    RK_SVO_PACKET16_TARGET static unsigned le_bits(V a, V b) { return static_cast<unsigned>(_mm512_cmp_ps_mask(a, b, _CMP_LE_OQ)); }
+    RK_SVO_PACKET16_TARGET static V add(V a, V b) { return _mm512_add_ps(a, b); }
     static M and_not(M a, M b) { return static_cast<__mmask16>(b & ~a); }
     static unsigned bits(M m) { return static_cast<unsigned>(m); }
     RK_SVO_PACKET16_TARGET static I blend_k(M m, I a, int k) { return _mm512_mask_blend_epi32(m, a, _mm512_set1_epi32(k)); }
@@ -414,13 +440,29 @@ inline bool packet_tree_ok(const rk_svo_tree& tree)
 }
 
 // Traces the set-up rays as one packet per direction octant present, with `walk_fn` (walk or
-// walk16); rays the node bound stops go to rk_svo_trace.
+// walk16); rays the node bound stops go to rk_svo_trace, and so do (LOD builds) rays whose footprint
+// stops them at the root (rk_svo_trace_begin_ answers those).
 template <class SetupT, class WalkFn>
-inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, const SetupT& S, unsigned n,
-                         rk_svo_trace_hit* hits, WalkFn walk_fn)
+inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, SetupT& S, unsigned n,
+                         rk_svo_trace_hit* hits, glm::vec2 cone, WalkFn walk_fn)
 {
     for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace_hit{false, 0.0f, 0u, glm::uvec3(0u), glm::vec3(0.0f), 0u, 0u, glm::uvec2(0u), 0u};
     unsigned pending = S.valid;
+#if RK_SVO_TRAVERSE_LOD
+    // rk_svo_trace_begin_'s footprint, from the same expressions.
+    S.lod_bias = glm::max(cone.x, 0.0f) * (1.0f / tree.root_size);
+    S.lod_slope = glm::max(cone.y, 0.0f);
+    for (unsigned m = pending; m != 0u; m &= m - 1u) {
+        const int i = svo_rays_detail::lowest_bit(m);
+        if (1.0f <= S.lod_bias + S.lod_slope * (S.t_enter[i] + S.t_min[i])) {
+            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
+            pending &= ~(1u << i);
+        }
+    }
+#else
+    S.lod_bias = 0.0f;
+    S.lod_slope = 0.0f;
+#endif
     while (pending != 0u) {
         const int32_t flip = S.flip[svo_rays_detail::lowest_bit(pending)];
         unsigned group = 0u;
@@ -432,7 +474,7 @@ inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const S
         const unsigned left = walk_fn(words, tree, S, group, uint32_t(flip), hits);
         for (unsigned m = left; m != 0u; m &= m - 1u) {
             const int i = svo_rays_detail::lowest_bit(m);
-            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
         }
     }
 }
@@ -440,24 +482,25 @@ inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const S
 }  // namespace svo_packet_detail
 
 /// svo_trace_packet8: hits[i] = the answer of rk_svo_trace(words, tree, rays[i].origin, rays[i].dir,
-/// rays[i].t_max, no cone) for i < n (n <= 8), the rays traced as one packet (see the file
-/// comment): hit, t, level, cell, normal, node and brick fields as rk_svo_trace (up to its
-/// near-parallel clamp; ties in edges and corners as rk_svo_trace's); `iterations` counts the
-/// packet's node expansions. Coherent rays (a 2x4 pixel tile) make it pay: the packet expands each
-/// node once for all its rays. `words` as SvoTree::gpu_words().
+/// rays[i].t_max, cone) for i < n (n <= 8), the rays traced as one packet (see the file comment):
+/// hit, t, level, cell, normal, node and brick fields as rk_svo_trace (up to its near-parallel
+/// clamp; ties in edges and corners as rk_svo_trace's); `iterations` counts the packet's node
+/// expansions. Coherent rays (a 2x4 pixel tile) make it pay: the packet expands each node once for
+/// all its rays. `words` as SvoTree::gpu_words(). `cone` is every ray's footprint in a
+/// RK_SVO_TRAVERSE_LOD=1 build (rk_svo_pixel_cone), ignored otherwise.
 inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
-                              unsigned n = 8u)
+                              unsigned n = 8u, glm::vec2 cone = glm::vec2(0.0f))
 {
     if (n > 8u) n = 8u;
 #if RK_SVO_PACKET_SIMD
     if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet_cpu_ok()) {
         svo_packet_detail::Setup S;
         svo_packet_detail::setup8(tree, rays, n, S);
-        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, svo_packet_detail::walk);
+        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, cone, svo_packet_detail::walk);
         return;
     }
 #endif
-    for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+    for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
 }
 
 /// svo_trace_packet16: svo_trace_packet8 for up to 16 rays (a 4x4 pixel tile) sharing one traversal
@@ -465,19 +508,19 @@ inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, co
 /// svo_trace_packet8. The same answers either way (the same expressions per lane). Where the rays
 /// are coherent a 4x4 packet shares more nodes than two 4x2 ones (docs/svo-traverse.md).
 inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
-                               unsigned n = 16u)
+                               unsigned n = 16u, glm::vec2 cone = glm::vec2(0.0f))
 {
     if (n > 16u) n = 16u;
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
     if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet16_cpu_ok()) {
         svo_packet_detail::Setup16 S;
         svo_packet_detail::setup16(tree, rays, n, S);
-        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, svo_packet_detail::walk16);
+        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, cone, svo_packet_detail::walk16);
         return;
     }
 #endif
-    svo_trace_packet8(words, tree, rays, hits, n < 8u ? n : 8u);
-    if (n > 8u) svo_trace_packet8(words, tree, rays + 8, hits + 8, n - 8u);
+    svo_trace_packet8(words, tree, rays, hits, n < 8u ? n : 8u, cone);
+    if (n > 8u) svo_trace_packet8(words, tree, rays + 8, hits + 8, n - 8u, cone);
 }
 
 /// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 4 x 4 where
@@ -494,13 +537,13 @@ inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
 /// svo_trace_packets: the rays of a row-major image block `width` rays wide (n = width * rows,
 /// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 16;
 /// 0 x 0, the default: svo_trace_packet_best_tile; more than 8 rays go to svo_trace_packet16; tiles
-/// at the right and bottom edges are partial). hits[i] answers rays[i].
+/// at the right and bottom edges are partial). hits[i] answers rays[i]; `cone` as svo_trace_packet8.
 inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
-                              rk_svo_trace_hit* hits, unsigned tile_w = 0u, unsigned tile_h = 0u)
+                              rk_svo_trace_hit* hits, unsigned tile_w = 0u, unsigned tile_h = 0u, glm::vec2 cone = glm::vec2(0.0f))
 {
     if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h);
     if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w * tile_h > 16u) {
-        for (std::size_t i = 0; i < n; i += 8) svo_trace_packet8(words, tree, rays + i, hits + i, unsigned(n - i < 8 ? n - i : 8));
+        for (std::size_t i = 0; i < n; i += 8) svo_trace_packet8(words, tree, rays + i, hits + i, unsigned(n - i < 8 ? n - i : 8), cone);
         return;
     }
     const bool wide = tile_w * tile_h > 8u;
@@ -520,9 +563,9 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
                 }
             if (k == 0u) continue;
             if (wide)
-                svo_trace_packet16(words, tree, in, out, k);
+                svo_trace_packet16(words, tree, in, out, k, cone);
             else
-                svo_trace_packet8(words, tree, in, out, k);
+                svo_trace_packet8(words, tree, in, out, k, cone);
             for (unsigned j = 0; j < k; ++j) hits[at[j]] = out[j];
         }
 }

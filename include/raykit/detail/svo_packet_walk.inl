@@ -28,11 +28,18 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V T0 = L::blend(lm, L::set1(1.0f), L::load(S.t_min));
     const V TH = L::blend(lm, z, L::load(S.t_hi));
     const V TL = L::blend(lm, z, L::next_up(TH));
+#if RK_SVO_TRAVERSE_LOD
+    // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
+    const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
+#endif
 
     WalkCtx w = walk_ctx(tree);
     Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
     int sp = 0;
-    stack[sp++] = Entry{1.0f, 1.0f, 1.0f, 0u, 0u, lanes};
+    Entry root = Entry();
+    root.px = root.py = root.pz = 1.0f;
+    root.rays = lanes;
+    stack[sp++] = root;
     unsigned active = lanes;
     uint32_t iter = 0u;
     alignas(64) float lo_out[L::N];
@@ -40,8 +47,28 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     bool bounded = false;
     while (sp > 0) {
         const Entry e = stack[--sp];
-        const unsigned R = e.rays & active;
+        unsigned R = e.rays & active;
         if (R == 0u) continue;
+#if RK_SVO_TRAVERSE_LOD
+        if ((e.stops & R) != 0u) {
+            // Rays whose footprint stopped them at this node when it was pushed: it is the first
+            // non-empty node they reach that is not wider than their footprint, so their hit. lo as
+            // the parent computed it (the same planes, the same order of max).
+            const unsigned hm = e.stops & R;
+            const float sz = uintBitsToFloat((127u - e.level) << 23u);
+            const V lo = L::max(L::max(L::sub(L::mul(L::set1(e.px + sz), Cx), Bx), L::sub(L::mul(L::set1(e.py + sz), Cy), By)),
+                                L::max(L::sub(L::mul(L::set1(e.pz + sz), Cz), Bz), T0));
+            L::store(lo_out, lo);
+            const int k = int(e.pslot & 7u);
+            for (int i = 0; i < L::N; ++i) k_out[i] = k;
+            const Entry parent{(k & 1) ? e.px - sz : e.px, (k & 2) ? e.py - sz : e.py, (k & 4) ? e.pz - sz : e.pz, e.level - 1u,
+                               e.phandle, 0u, 0u, 0u, 0u, 0u};
+            finish_hits(words, tree, S, hm, k_out, lo_out, parent, flip, e.ppdesc, e.pslot >> 8u, w, iter, hits);
+            active &= ~hm;
+            R &= ~hm;
+            if (R == 0u) continue;
+        }
+#endif
         if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
             bounded = true;
             break;
@@ -104,11 +131,20 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         }
         // Inner children: pushed back to front (the first to visit on top).
         const uint32_t first = first_child(words, e, pdesc, w);
+#if RK_SVO_TRAVERSE_LOD
+        const V half_v = L::set1(half);
+#endif
         for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
             const int k = svo_rays_detail::lowest_bit(rest);
             const V lo = L::max(A[k & 3], Bk[k >> 2]);
             const V hi = L::close_end(L::min(C[k & 3], D[k >> 2]), TH, TL);
-            push_child(stack, sp, e, k, flip, m8, first, w, L::lt_bits(lo, hi) & R);
+            const unsigned cm = L::lt_bits(lo, hi) & R;
+#if RK_SVO_TRAVERSE_LOD
+            const unsigned stops = L::le_bits(half_v, L::add(LB, L::mul(LS, L::add(TE, lo)))) & cm;
+#else
+            const unsigned stops = 0u;
+#endif
+            push_child(stack, sp, e, k, flip, m8, first, w, cm, stops, pdesc);
         }
     }
     return end_walk(active, iter, bounded, hits);
