@@ -70,6 +70,11 @@ def main():
         "its default tiles, 4x4 pixels of 16 rays sharing one traversal on AVX-512 lanes where the CPU has AVX-512F, "
         "else 4x2 tiles of 8 rays on AVX2 lanes (" + avx512_note() + "), answers rk_svo_trace's except at exact "
         "lattice ties (test_svo_trace_packet); the same chunks.\n"
+        "- **raykit packets, 1-px LOD**: the same packets in a `RK_SVO_TRAVERSE_LOD=1` build, each ray "
+        "stopping at the first non-empty node no wider than one pixel of the camera (`rk_svo_pixel_cone`, "
+        "scale 1): a coarser answer than full detail (its *t − t_Embree* is in voxels of depth D, and its "
+        "hits are those of the tree whose voxels match the pixels), for renderers that need no sub-pixel "
+        "detail; answers rk_svo_trace's in the same build (test_svo_trace_packet's LOD part).\n"
         "- **Embree**: `rtcIntersect1` per ray on the source triangles (BVH quality high).\n"
         "- **OpenVDB**: `LevelSetRayIntersector` on `meshToLevelSet` at the same voxel size (half-width 3).\n")
     out.append(
@@ -89,7 +94,7 @@ def main():
             out.append(f"| Embree | — | {fmt(e1)} | {fmt(mr(mesh, 'embree', -1, 2))} | {b['build_ms']:.0f} | | | | | |")
         depths = sorted({k[2] for k in rows if k[0] == mesh and k[2] >= 0})
         for d in depths:
-            for tracer in ("openvdb", "raykit", "raykit_simd", "raykit_packet"):
+            for tracer in ("openvdb", "raykit", "raykit_simd", "raykit_packet", "raykit_packet_lod"):
                 b = rows.get((mesh, tracer, d, 1))
                 if not b:
                     continue
@@ -101,7 +106,8 @@ def main():
                 hits = f"{b.get('hit_diff_pct', 0):+.2f} %" if "hit_diff_pct" in b else ""
                 dt = f"{b.get('dt_vox', 0):+.2f}" if "dt_vox" in b else ""
                 bpv = fmt(b.get("bytes_per_voxel"), 3) if ours else ""
-                name = {"raykit": "raykit", "raykit_simd": "raykit SIMD", "raykit_packet": "raykit packets"}.get(tracer, "OpenVDB")
+                name = {"raykit": "raykit", "raykit_simd": "raykit SIMD", "raykit_packet": "raykit packets",
+                        "raykit_packet_lod": "raykit packets, 1-px LOD"}.get(tracer, "OpenVDB")
                 out.append(f"| {name} | {d} | {fmt(r1)} | {fmt(mr(mesh, tracer, d, 2))} | {b['build_ms']:.0f} | {ratio_vdb} | {ratio_e} | {hits} | {dt} | {bpv} |")
     out.append("\n![Mrays/s by depth, single thread](img/bench_trace_mrays.png)\n")
 
@@ -110,7 +116,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         plots = []
         for i, mesh in enumerate(meshes):
-            for tracer in ("raykit", "raykit_simd", "raykit_packet", "openvdb"):
+            for tracer in ("raykit", "raykit_simd", "raykit_packet", "raykit_packet_lod", "openvdb"):
                 if not any(k[0] == mesh and k[1] == tracer for k in rows):
                     continue
                 path = os.path.join(tmp, f"{mesh}_{tracer}.dat")
@@ -118,7 +124,8 @@ def main():
                     for d in sorted({k[2] for k in rows if k[0] == mesh and k[1] == tracer and k[2] >= 0}):
                         f.write(f"{d} {mr(mesh, tracer, d, 1)}\n")
                 style = {"raykit": "linespoints lw 2 pt 7", "raykit_simd": "linespoints lw 2 dt 3 pt 5",
-                         "raykit_packet": "linespoints lw 2 dt 4 pt 9"}.get(tracer, "points pt 4 ps 1.5")
+                         "raykit_packet": "linespoints lw 2 dt 4 pt 9",
+                         "raykit_packet_lod": "linespoints lw 1 dt 5 pt 11"}.get(tracer, "points pt 4 ps 1.5")
                 plots.append(f"'{path}' using 1:2 with {style} lc {i + 1} title '{mesh} {tracer}'")
             e1 = mr(mesh, "embree", -1, 1)
             if e1:
