@@ -111,33 +111,42 @@ def main():
                 out.append(f"| {name} | {d} | {fmt(r1)} | {fmt(mr(mesh, tracer, d, 2))} | {b['build_ms']:.0f} | {ratio_vdb} | {ratio_e} | {hits} | {dt} | {bpv} |")
     out.append("\n![Mrays/s by depth, single thread](img/bench_trace_mrays.png)\n")
 
-    # Plot: single-thread Mrays/s by depth, raykit lines, OpenVDB points, Embree as a flat line.
+    # Plot: one panel per mesh, single-thread Mrays/s by depth: raykit's tracers as lines, OpenVDB
+    # as points, Embree (depth-independent) as a flat line; one colour per tracer in every panel.
     img = os.path.join(args.out_dir, "img", "bench_trace_mrays.png")
+    tracers = [("raykit", "rk_svo_trace", "linespoints lw 2 pt 7 lc rgb '#1f77b4'"),
+               ("raykit_simd", "svo_trace_rays (8 lanes)", "linespoints lw 2 dt 3 pt 5 lc rgb '#2ca02c'"),
+               ("raykit_packet", "packets", "linespoints lw 2 pt 9 lc rgb '#d62728'"),
+               ("raykit_packet_lod", "packets, 1-px LOD", "linespoints lw 2 dt 4 pt 11 lc rgb '#ff7f0e'"),
+               ("openvdb", "OpenVDB", "points pt 4 ps 1.5 lc rgb '#7f7f7f'")]
     with tempfile.TemporaryDirectory() as tmp:
-        plots = []
-        for i, mesh in enumerate(meshes):
-            for tracer in ("raykit", "raykit_simd", "raykit_packet", "raykit_packet_lod", "openvdb"):
-                if not any(k[0] == mesh and k[1] == tracer for k in rows):
+        cols = 3
+        nrows = (len(meshes) + cols - 1) // cols
+        gp = [
+            f"set terminal pngcairo size 1200,{420 * nrows} font 'DejaVu Sans,10' noenhanced",
+            f"set output '{img}'",
+            f"set multiplot layout {nrows},{cols} title 'CPU primary rays, single thread (512x512 frame): Mrays/s by octree depth'",
+            "set logscale y", "set grid", "set xrange [7.5:12.5]", "set yrange [0.5:50]", "set xtics 1",
+            "set xlabel 'octree depth'", "set ylabel 'Mrays/s'", "set key bottom right font ',8' samplen 3",
+        ]
+        for mesh in meshes:
+            plots = []
+            for tracer, label, style in tracers:
+                ds = sorted({k[2] for k in rows if k[0] == mesh and k[1] == tracer and k[2] >= 0})
+                if not ds:
                     continue
                 path = os.path.join(tmp, f"{mesh}_{tracer}.dat")
                 with open(path, "w") as f:
-                    for d in sorted({k[2] for k in rows if k[0] == mesh and k[1] == tracer and k[2] >= 0}):
+                    for d in ds:
                         f.write(f"{d} {mr(mesh, tracer, d, 1)}\n")
-                style = {"raykit": "linespoints lw 2 pt 7", "raykit_simd": "linespoints lw 2 dt 3 pt 5",
-                         "raykit_packet": "linespoints lw 2 dt 4 pt 9",
-                         "raykit_packet_lod": "linespoints lw 1 dt 5 pt 11"}.get(tracer, "points pt 4 ps 1.5")
-                plots.append(f"'{path}' using 1:2 with {style} lc {i + 1} title '{mesh} {tracer}'")
+                plots.append(f"'{path}' using 1:2 with {style} title '{label}'")
             e1 = mr(mesh, "embree", -1, 1)
             if e1:
-                plots.append(f"{e1} with lines dt 2 lc {i + 1} title '{mesh} Embree'")
-        gp = (
-            "set terminal pngcairo size 1000,560 font 'DejaVu Sans,10' noenhanced\n"
-            f"set output '{img}'\n"
-            "set title 'CPU primary rays, single thread (512x512 frame)'\n"
-            "set xlabel 'octree depth'\nset ylabel 'Mrays/s'\nset logscale y\nset grid\n"
-            "set key outside right\nset xrange [7.5:12.5]\n"
-            "plot " + ", \\\n     ".join(plots) + "\n")
-        subprocess.run(["gnuplot"], input=gp.encode(), check=True)
+                plots.append(f"{e1} with lines dt 2 lw 2 lc rgb '#9467bd' title 'Embree (triangles)'")
+            gp.append(f"set title '{mesh}'")
+            gp.append("plot " + ", \\\n     ".join(plots))
+        gp.append("unset multiplot")
+        subprocess.run(["gnuplot"], input=("\n".join(gp) + "\n").encode(), check=True)
     path = os.path.join(args.out_dir, "benchmarks_trace.md")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
