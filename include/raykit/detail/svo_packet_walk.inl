@@ -77,6 +77,40 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         // The node's child mask (format slots) and what the hit of a child needs.
         uint32_t pdesc;
         const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
+#if !RK_SVO_TRAVERSE_LOD
+        if constexpr (L::kBrickHit) {
+            if (e.level == w.top && w.b == 2u && w.leaf == tree.depth && bitCount(R) <= 4) {
+                // A brick reached by one or two rays: each ray's first voxel of the 64 at once
+                // (L::brick_hit) instead of expanding the brick and its sub-nodes.
+                const float q = 0.25f * uintBitsToFloat((127u - e.level) << 23u);
+                const uint64_t occ = mirror64(uint64_t(w.bmx) | (uint64_t(w.bmy) << 32u), flip);
+                for (unsigned rest = R; rest != 0u; rest &= rest - 1u) {
+                    const int i = svo_rays_detail::lowest_bit(rest);
+                    const float h = S.t_hi[i];
+                    const uint32_t hb = floatBitsToUint(h);
+                    const float hu = h == 0.0f ? uintBitsToFloat(1u) : uintBitsToFloat(h > 0.0f ? hb + 1u : hb - 1u);
+                    float lo = 0.0f;
+                    const int m = L::brick_hit(glm::vec3(e.px, e.py, e.pz), q, glm::vec3(S.cx[i], S.cy[i], S.cz[i]),
+                                               glm::vec3(S.bx[i], S.by[i], S.bz[i]), S.t_min[i], h, hu, occ, lo);
+                    if (m < 0) continue;
+                    const int ks = m >> 3;
+                    const uint32_t cs = uint32_t(ks) ^ flip;
+                    Entry sub = Entry();
+                    sub.px = e.px + 2.0f * q * float(ks & 1);
+                    sub.py = e.py + 2.0f * q * float((ks >> 1) & 1);
+                    sub.pz = e.pz + 2.0f * q * float((ks >> 2) & 1);
+                    sub.level = e.level + 1u;
+                    sub.handle = cs;
+                    k_out[i] = m & 7;
+                    lo_out[i] = lo;
+                    const uint32_t m8s = ((cs < 4u ? w.bmx : w.bmy) >> (8u * (cs & 3u))) & 0xFFu;
+                    finish_hits(words, tree, S, 1u << i, k_out, lo_out, sub, flip, 0u, m8s, w, iter, hits);
+                    active &= ~(1u << i);
+                }
+                continue;
+            }
+        }
+#endif
         const uint32_t mm = mirror_mask(m8, flip);
         // Plane distances of the node's exit (min corner), middle and entry (max corner) planes.
         const float size = uintBitsToFloat((127u - e.level) << 23u);  // 2^-level
