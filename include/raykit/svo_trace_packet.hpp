@@ -25,8 +25,10 @@
 // ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones, with the same
 // answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
-// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); measured
-// speed-ups by depth and tile are in docs/svo-traverse.md.
+// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth). Where few
+// rays reach a 4^3 brick, the 16-lane walk finds each one's first voxel among the brick's 64 at
+// once (Lanes16::brick_hit, full-detail builds). Measured speed-ups by depth and tile are in
+// docs/svo-traverse.md.
 #pragma once
 
 #include <cstddef>
