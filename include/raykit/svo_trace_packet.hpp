@@ -345,8 +345,8 @@ struct Lanes8 {
     RK_SVO_PACKET_TARGET static V blend(M m, V a, V b) { return _mm256_blendv_ps(a, b, _mm256_castsi256_ps(m)); }
     RK_SVO_PACKET_TARGET static void store(float* p, V v) { _mm256_store_ps(p, v); }
     RK_SVO_PACKET_TARGET static void store_i(int32_t* p, I v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
-    // No brick_hit on 8 lanes: Lanes16's, written for 8 groups of 8 voxels, measured 0.81-0.99x the
-    // walk's own brick expansions (4x2 packets, depths 8-12).
+    // No brick_hit on 8 lanes: eight groups of 8 voxels are slower than the walk's own brick
+    // expansions there (docs/svo-traverse.md).
     static constexpr bool kBrickHit = false;
     static int brick_hit(const glm::vec3&, float, const glm::vec3&, const glm::vec3&, float, float, float, uint64_t, float&) { return -1; }
 };
