@@ -66,7 +66,7 @@ struct alignas(32) Setup {
     float t_min[8], t_hi[8], t_enter[8], t_scale[8];
     int32_t flip[8];
     unsigned valid;
-    float lod_bias, lod_slope;  // rk_svo_trace_begin_'s, in a LOD build (set by set_lod)
+    float lod_bias, lod_slope;  // rk_svo_trace_begin_'s, in a LOD build (set by trace_set_up)
 };
 
 RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Setup& S)
@@ -439,11 +439,11 @@ struct Lanes16 {
     // One ray in a 4^3 brick, all 64 voxels at once: the brick's mirrored minimum corner p, its
     // voxels' edge q and the ray's plane coefficients c, b give the 5 plane distances
     // (p + j q) c - b of each mirrored axis (the walk's, in the same operations), occ the occupied
-    // voxels by mirrored index
-    // (mirror64). Voxel m = (mirrored sub-node << 3) | mirrored slot spans planes i..i+1 on each
-    // axis (i = 2 * sub bit + slot bit); its interval is the walk's [lo, hi). Returns the voxel the
-    // ray enters first (its lo in `lo_out`), -1 if none: the intervals of one ray are disjoint, so
-    // that is the walk's two-level answer, without its branches (ties: the highest m, the walk's order).
+    // voxels by mirrored index (mirror64). Voxel m = (mirrored sub-node << 3) | mirrored slot spans
+    // planes i..i+1 on each axis (i = 2 * sub bit + slot bit); its interval is the walk's [lo, hi).
+    // Returns the voxel the ray enters first (its lo in `lo_out`), -1 if none: the intervals of one
+    // ray are disjoint, so that is the walk's two-level answer, without its branches (ties: the
+    // highest m, the walk's order).
     static constexpr bool kBrickHit = true;
     RK_SVO_PACKET16_TARGET static V perm(__m512i idx, V table) { return _mm512_maskz_permutexvar_ps(static_cast<__mmask16>(0xFFFFu), idx, table); }
     RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,

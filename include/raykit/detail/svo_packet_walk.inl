@@ -28,6 +28,8 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V T0 = L::blend(lm, L::set1(1.0f), L::load(S.t_min));
     const V TH = L::blend(lm, z, L::load(S.t_hi));
     const V TL = L::blend(lm, z, L::next_up(TH));
+    alignas(64) float tl_lane[L::N];  // TL's lanes, for L::brick_hit
+    if constexpr (L::kBrickHit) L::store(tl_lane, TL);
 #if RK_SVO_TRAVERSE_LOD
     // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
     const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
@@ -80,18 +82,15 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #if !RK_SVO_TRAVERSE_LOD
         if constexpr (L::kBrickHit) {
             if (e.level == w.top && w.b == 2u && w.leaf == tree.depth && bitCount(R) <= 4) {
-                // A brick reached by one or two rays: each ray's first voxel of the 64 at once
+                // A brick reached by at most four rays: each ray's first voxel of the 64 at once
                 // (L::brick_hit) instead of expanding the brick and its sub-nodes.
                 const float q = 0.25f * uintBitsToFloat((127u - e.level) << 23u);
                 const uint64_t occ = mirror64(uint64_t(w.bmx) | (uint64_t(w.bmy) << 32u), flip);
                 for (unsigned rest = R; rest != 0u; rest &= rest - 1u) {
                     const int i = svo_rays_detail::lowest_bit(rest);
-                    const float h = S.t_hi[i];
-                    const uint32_t hb = floatBitsToUint(h);
-                    const float hu = h == 0.0f ? uintBitsToFloat(1u) : uintBitsToFloat(h > 0.0f ? hb + 1u : hb - 1u);
                     float lo = 0.0f;
                     const int m = L::brick_hit(glm::vec3(e.px, e.py, e.pz), q, glm::vec3(S.cx[i], S.cy[i], S.cz[i]),
-                                               glm::vec3(S.bx[i], S.by[i], S.bz[i]), S.t_min[i], h, hu, occ, lo);
+                                               glm::vec3(S.bx[i], S.by[i], S.bz[i]), S.t_min[i], S.t_hi[i], tl_lane[i], occ, lo);
                     if (m < 0) continue;
                     const int ks = m >> 3;
                     const uint32_t cs = uint32_t(ks) ^ flip;
@@ -103,8 +102,9 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                     sub.handle = cs;
                     k_out[i] = m & 7;
                     lo_out[i] = lo;
-                    const uint32_t m8s = ((cs < 4u ? w.bmx : w.bmy) >> (8u * (cs & 3u))) & 0xFFu;
-                    finish_hits(words, tree, S, 1u << i, k_out, lo_out, sub, flip, 0u, m8s, w, iter, hits);
+                    uint32_t no_desc;
+                    const uint32_t m8s = node_mask(words, tree, sub, w, no_desc);  // the sub-node's byte of the brick
+                    finish_hits(words, tree, S, 1u << i, k_out, lo_out, sub, flip, no_desc, m8s, w, iter, hits);
                     active &= ~(1u << i);
                 }
                 continue;
