@@ -280,6 +280,15 @@ inline uint32_t first_child(const uint32_t* words, const Entry& e, uint32_t pdes
     return rk_svo_first_child(e.handle, pdesc, far_word);
 }
 
+// Asks the cache for the children of a node above the bricks (first: the first child's handle;
+// bricks: they are bricks, whose masks are two words each).
+inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, uint32_t first, bool bricks)
+{
+    const uint32_t* p = words + (bricks ? rk_svo_word_of(first, tree.desc_words) : first);
+    _mm_prefetch(reinterpret_cast<const char*>(p), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(p + (bricks ? 15 : 7)), _MM_HINT_T0);
+}
+
 // Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
 // branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
 inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,

@@ -79,6 +79,10 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         // The node's child mask (format slots) and what the hit of a child needs.
         uint32_t pdesc;
         const uint32_t m8 = node_mask(words, tree, e, w, pdesc);
+        // Above the bricks, the children's descriptors or brick masks are fetched now, while the
+        // planes are computed (they are contiguous: one or two cache lines).
+        const uint32_t first = first_child(words, e, pdesc, w);
+        if (e.level < w.top) prefetch_children(words, tree, first, e.level + 1u == w.top);
 #if !RK_SVO_TRAVERSE_LOD
         if constexpr (L::kBrickHit) {
             if (e.level == w.top && w.b == 2u && w.leaf == tree.depth && bitCount(R) <= 4) {
@@ -164,7 +168,6 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             continue;
         }
         // Inner children: pushed back to front (the first to visit on top).
-        const uint32_t first = first_child(words, e, pdesc, w);
 #if RK_SVO_TRAVERSE_LOD
         const V half_v = L::set1(half);
 #endif
