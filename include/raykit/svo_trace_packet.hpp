@@ -69,13 +69,16 @@ struct alignas(32) Setup {
     float lod_bias, lod_slope;  // rk_svo_trace_begin_'s, in a LOD build (set by trace_set_up)
 };
 
-RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Setup& S)
+// Writes lanes off..off+7 of S (Setup, or a half of Setup16) for the rays rp[0..n) (n <= 8) and
+// returns their `valid` bits (bit i: lane off + i).
+template <class SetupT>
+RK_SVO_PACKET_TARGET inline unsigned setup8(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, SetupT& S, int off)
 {
     using svo_rays_detail::glm_max;
     using svo_rays_detail::glm_min;
     alignas(32) float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8], tm[8];
     for (unsigned i = 0; i < 8; ++i) {
-        const SvoRay& r = rays[i < n ? i : 0u];
+        const SvoRay& r = *rp[i < n ? i : 0u];
         ox[i] = r.origin.x;
         oy[i] = r.origin.y;
         oz[i] = r.origin.z;
@@ -94,7 +97,7 @@ RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* r
     const __m256 len = _mm256_sqrt_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, nx), _mm256_mul_ps(ny, ny)), _mm256_mul_ps(nz, nz)));
     __m256 ux = _mm256_div_ps(nx, len), uy = _mm256_div_ps(ny, len), uz = _mm256_div_ps(nz, len);
     const __m256 rs = _mm256_set1_ps(tree.root_size);
-    _mm256_store_ps(S.t_scale, glm_min(_mm256_div_ps(_mm256_div_ps(rs, m), len), fmax));
+    _mm256_store_ps(S.t_scale + off, glm_min(_mm256_div_ps(_mm256_div_ps(rs, m), len), fmax));
     const __m256 inv_size = _mm256_set1_ps(1.0f / tree.root_size);
     __m256 Ox = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(ox), _mm256_set1_ps(tree.root_min.x)), inv_size), one);
     __m256 Oy = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(oy), _mm256_set1_ps(tree.root_min.y)), inv_size), one);
@@ -104,9 +107,9 @@ RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* r
     ux = _mm256_blendv_ps(ux, _mm256_or_ps(eps, _mm256_and_ps(sgn, ux)), _mm256_cmp_ps(_mm256_andnot_ps(sgn, ux), eps, _CMP_LT_OQ));
     uy = _mm256_blendv_ps(uy, _mm256_or_ps(eps, _mm256_and_ps(sgn, uy)), _mm256_cmp_ps(_mm256_andnot_ps(sgn, uy), eps, _CMP_LT_OQ));
     uz = _mm256_blendv_ps(uz, _mm256_or_ps(eps, _mm256_and_ps(sgn, uz)), _mm256_cmp_ps(_mm256_andnot_ps(sgn, uz), eps, _CMP_LT_OQ));
-    _mm256_store_ps(S.ux, ux);
-    _mm256_store_ps(S.uy, uy);
-    _mm256_store_ps(S.uz, uz);
+    _mm256_store_ps(S.ux + off, ux);
+    _mm256_store_ps(S.uy + off, uy);
+    _mm256_store_ps(S.uz + off, uz);
     const __m256 ix = _mm256_div_ps(one, ux), iy = _mm256_div_ps(one, uy), iz = _mm256_div_ps(one, uz);
     const __m256 tax = _mm256_mul_ps(_mm256_sub_ps(one, Ox), ix), tbx = _mm256_mul_ps(_mm256_sub_ps(two, Ox), ix);
     const __m256 tay = _mm256_mul_ps(_mm256_sub_ps(one, Oy), iy), tby = _mm256_mul_ps(_mm256_sub_ps(two, Oy), iy);
@@ -116,8 +119,8 @@ RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* r
     __m256 t_lim = _mm256_and_ps(_mm256_cmp_ps(TM, zero, _CMP_GT_OQ),
                                  glm_min(_mm256_mul_ps(_mm256_mul_ps(TM, _mm256_div_ps(m, rs)), len), fmax));
     ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_cmp_ps(t_enter, t_leave, _CMP_LE_OQ), _mm256_cmp_ps(t_enter, t_lim, _CMP_LE_OQ)));
-    S.valid = static_cast<unsigned>(_mm256_movemask_ps(ok)) & ((1u << n) - 1u);
-    _mm256_store_ps(S.t_enter, t_enter);
+    const unsigned valid = static_cast<unsigned>(_mm256_movemask_ps(ok)) & ((1u << n) - 1u);
+    _mm256_store_ps(S.t_enter + off, t_enter);
     Ox = _mm256_add_ps(Ox, _mm256_mul_ps(ux, t_enter));
     Oy = _mm256_add_ps(Oy, _mm256_mul_ps(uy, t_enter));
     Oz = _mm256_add_ps(Oz, _mm256_mul_ps(uz, t_enter));
@@ -131,18 +134,19 @@ RK_SVO_PACKET_TARGET inline void setup8(const rk_svo_tree& tree, const SvoRay* r
     const __m256i fl = _mm256_or_si256(
         _mm256_and_si256(_mm256_castps_si256(px), _mm256_set1_epi32(1)),
         _mm256_or_si256(_mm256_and_si256(_mm256_castps_si256(py), _mm256_set1_epi32(2)), _mm256_and_si256(_mm256_castps_si256(pz), _mm256_set1_epi32(4))));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(S.flip), fl);
-    _mm256_store_ps(S.cx, cx);
-    _mm256_store_ps(S.cy, cy);
-    _mm256_store_ps(S.cz, cz);
-    _mm256_store_ps(S.bx, bx);
-    _mm256_store_ps(S.by, by);
-    _mm256_store_ps(S.bz, bz);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(S.flip + off), fl);
+    _mm256_store_ps(S.cx + off, cx);
+    _mm256_store_ps(S.cy + off, cy);
+    _mm256_store_ps(S.cz + off, cz);
+    _mm256_store_ps(S.bx + off, bx);
+    _mm256_store_ps(S.by + off, by);
+    _mm256_store_ps(S.bz + off, bz);
     const __m256 t_min = glm_max(glm_max(glm_max(_mm256_sub_ps(_mm256_mul_ps(two, cx), bx), _mm256_sub_ps(_mm256_mul_ps(two, cy), by)),
                                          _mm256_sub_ps(_mm256_mul_ps(two, cz), bz)),
                                  zero);
-    _mm256_store_ps(S.t_min, t_min);
-    _mm256_store_ps(S.t_hi, glm_min(glm_min(glm_min(_mm256_sub_ps(cx, bx), _mm256_sub_ps(cy, by)), _mm256_sub_ps(cz, bz)), t_lim));
+    _mm256_store_ps(S.t_min + off, t_min);
+    _mm256_store_ps(S.t_hi + off, glm_min(glm_min(glm_min(_mm256_sub_ps(cx, bx), _mm256_sub_ps(cy, by)), _mm256_sub_ps(cz, bz)), t_lim));
+    return valid;
 }
 
 // A node to visit: its mirrored minimum corner, level, handle (descriptor or brick ordinal, or the
@@ -234,7 +238,7 @@ inline uint32_t node_mask(const uint32_t* words, const rk_svo_tree& tree, const 
 template <class SetupT>
 inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, unsigned hm, const int32_t* k_out,
                         const float* lo_out, const Entry& e, uint32_t flip, uint32_t pdesc, uint32_t m8, const WalkCtx& w,
-                        uint32_t iter, rk_svo_trace_hit* hits)
+                        uint32_t iter, rk_svo_trace_hit* const* hits)
 {
     for (unsigned m = hm; m != 0u; m &= m - 1u) {
         const int i = svo_rays_detail::lowest_bit(m);
@@ -261,14 +265,14 @@ inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const Se
         s.handle = e.handle;
         s.bmask = glm::uvec2(w.bmx, w.bmy);
         s.brick = w.brick;
-        rk_svo_trace_finish_(words, tree, s, true, iter, hits[i]);
+        rk_svo_trace_finish_(words, tree, s, true, iter, *hits[i]);
     }
 }
 
 // The end of a walk: the unanswered rays get the node count; returns those the node bound stopped.
-inline unsigned end_walk(unsigned active, uint32_t iter, bool bounded, rk_svo_trace_hit* hits)
+inline unsigned end_walk(unsigned active, uint32_t iter, bool bounded, rk_svo_trace_hit* const* hits)
 {
-    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)].iterations = iter;
+    for (unsigned m = active; m != 0u; m &= m - 1u) hits[svo_rays_detail::lowest_bit(m)]->iterations = iter;
     return bounded ? active : 0u;
 }
 
@@ -389,22 +393,12 @@ struct alignas(64) Setup16 {
     float lod_bias, lod_slope;
 };
 
-// Two 8-ray set-ups side by side (lanes of an absent half are invalid).
-inline void setup16(const rk_svo_tree& tree, const SvoRay* rays, unsigned n, Setup16& S)
+// Two 8-ray set-ups side by side, written in place (lanes of an absent half are invalid).
+inline void setup16(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, Setup16& S)
 {
-    Setup h[2];
-    setup8(tree, rays, n < 8u ? n : 8u, h[0]);
-    setup8(tree, n > 8u ? rays + 8 : rays, n > 8u ? n - 8u : 0u, h[1]);
-    for (int k = 0; k < 2; ++k)
-        for (int i = 0; i < 8; ++i) {
-            const int j = 8 * k + i;
-            S.cx[j] = h[k].cx[i], S.cy[j] = h[k].cy[i], S.cz[j] = h[k].cz[i];
-            S.bx[j] = h[k].bx[i], S.by[j] = h[k].by[i], S.bz[j] = h[k].bz[i];
-            S.ux[j] = h[k].ux[i], S.uy[j] = h[k].uy[i], S.uz[j] = h[k].uz[i];
-            S.t_min[j] = h[k].t_min[i], S.t_hi[j] = h[k].t_hi[i], S.t_enter[j] = h[k].t_enter[i], S.t_scale[j] = h[k].t_scale[i];
-            S.flip[j] = h[k].flip[i];
-        }
-    S.valid = h[0].valid | (h[1].valid << 8u);
+    const unsigned v0 = setup8(tree, rp, n < 8u ? n : 8u, S, 0);
+    const unsigned v1 = setup8(tree, n > 8u ? rp + 8 : rp, n > 8u ? n - 8u : 0u, S, 8);
+    S.valid = v0 | (v1 << 8u);
 }
 
 // Lanes8's operations on 16 lanes of AVX-512 registers, masks in mask registers. max and min take
@@ -530,10 +524,10 @@ inline bool packet_tree_ok(const rk_svo_tree& tree)
 // walk16); rays the node bound stops go to rk_svo_trace, and so do (LOD builds) rays whose footprint
 // stops them at the root (rk_svo_trace_begin_ answers those).
 template <class SetupT, class WalkFn>
-inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, SetupT& S, unsigned n,
-                         rk_svo_trace_hit* hits, glm::vec2 cone, WalkFn walk_fn)
+inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, SetupT& S, unsigned n,
+                         rk_svo_trace_hit* const* hits, glm::vec2 cone, WalkFn walk_fn)
 {
-    for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace_hit{false, 0.0f, 0u, glm::uvec3(0u), glm::vec3(0.0f), 0u, 0u, glm::uvec2(0u), 0u};
+    for (unsigned i = 0; i < n; ++i) *hits[i] = rk_svo_trace_hit{false, 0.0f, 0u, glm::uvec3(0u), glm::vec3(0.0f), 0u, 0u, glm::uvec2(0u), 0u};
     unsigned pending = S.valid;
 #if RK_SVO_TRAVERSE_LOD
     // rk_svo_trace_begin_'s footprint, from the same expressions.
@@ -542,7 +536,7 @@ inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const S
     for (unsigned m = pending; m != 0u; m &= m - 1u) {
         const int i = svo_rays_detail::lowest_bit(m);
         if (1.0f <= S.lod_bias + S.lod_slope * (S.t_enter[i] + S.t_min[i])) {
-            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
+            *hits[i] = rk_svo_trace(words, tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
             pending &= ~(1u << i);
         }
     }
@@ -561,11 +555,44 @@ inline void trace_set_up(const uint32_t* words, const rk_svo_tree& tree, const S
         const unsigned left = walk_fn(words, tree, S, group, uint32_t(flip), hits);
         for (unsigned m = left; m != 0u; m &= m - 1u) {
             const int i = svo_rays_detail::lowest_bit(m);
-            hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
+            *hits[i] = rk_svo_trace(words, tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
         }
     }
 }
 #endif
+}  // namespace svo_packet_detail
+
+namespace svo_packet_detail {
+// svo_trace_packet8/16 on rays and answers reached through pointers (*rp[i] is answered in *hp[i]),
+// so that svo_trace_packets traces a tile of an image in place.
+inline void packet8(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                    unsigned n, glm::vec2 cone)
+{
+#if RK_SVO_PACKET_SIMD
+    if (n > 0u && packet_tree_ok(tree) && packet_cpu_ok()) {
+        Setup S;
+        S.valid = setup8(tree, rp, n, S, 0);
+        trace_set_up(words, tree, rp, S, n, hp, cone, walk);
+        return;
+    }
+#endif
+    for (unsigned i = 0; i < n; ++i) *hp[i] = rk_svo_trace(words, tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
+}
+
+inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                     unsigned n, glm::vec2 cone)
+{
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
+    if (n > 0u && packet_tree_ok(tree) && packet16_cpu_ok()) {
+        Setup16 S;
+        setup16(tree, rp, n, S);
+        trace_set_up(words, tree, rp, S, n, hp, cone, walk16);
+        return;
+    }
+#endif
+    packet8(words, tree, rp, hp, n < 8u ? n : 8u, cone);
+    if (n > 8u) packet8(words, tree, rp + 8, hp + 8, n - 8u, cone);
+}
 }  // namespace svo_packet_detail
 
 /// svo_trace_packet8: hits[i] = the answer of rk_svo_trace(words, tree, rays[i].origin, rays[i].dir,
@@ -579,15 +606,10 @@ inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, co
                               unsigned n = 8u, glm::vec2 cone = glm::vec2(0.0f))
 {
     if (n > 8u) n = 8u;
-#if RK_SVO_PACKET_SIMD
-    if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet_cpu_ok()) {
-        svo_packet_detail::Setup S;
-        svo_packet_detail::setup8(tree, rays, n, S);
-        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, cone, svo_packet_detail::walk);
-        return;
-    }
-#endif
-    for (unsigned i = 0; i < n; ++i) hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
+    const SvoRay* rp[8];
+    rk_svo_trace_hit* hp[8];
+    for (unsigned i = 0; i < n; ++i) rp[i] = rays + i, hp[i] = hits + i;
+    svo_packet_detail::packet8(words, tree, rp, hp, n, cone);
 }
 
 /// svo_trace_packet16: svo_trace_packet8 for up to 16 rays (a 4x4 pixel tile) sharing one traversal
@@ -598,16 +620,10 @@ inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, c
                                unsigned n = 16u, glm::vec2 cone = glm::vec2(0.0f))
 {
     if (n > 16u) n = 16u;
-#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (n > 0u && svo_packet_detail::packet_tree_ok(tree) && svo_packet_detail::packet16_cpu_ok()) {
-        svo_packet_detail::Setup16 S;
-        svo_packet_detail::setup16(tree, rays, n, S);
-        svo_packet_detail::trace_set_up(words, tree, rays, S, n, hits, cone, svo_packet_detail::walk16);
-        return;
-    }
-#endif
-    svo_trace_packet8(words, tree, rays, hits, n < 8u ? n : 8u, cone);
-    if (n > 8u) svo_trace_packet8(words, tree, rays + 8, hits + 8, n - 8u, cone);
+    const SvoRay* rp[16];
+    rk_svo_trace_hit* hp[16];
+    for (unsigned i = 0; i < n; ++i) rp[i] = rays + i, hp[i] = hits + i;
+    svo_packet_detail::packet16(words, tree, rp, hp, n, cone);
 }
 
 /// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 4 x 4 where
@@ -635,9 +651,8 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
     }
     const bool wide = tile_w * tile_h > 8u;
     const std::size_t rows = (n + width - 1u) / width;
-    SvoRay in[16];
-    rk_svo_trace_hit out[16];
-    std::size_t at[16];
+    const SvoRay* rp[16];
+    rk_svo_trace_hit* hp[16];
     for (std::size_t y0 = 0; y0 < rows; y0 += tile_h)
         for (std::size_t x0 = 0; x0 < width; x0 += tile_w) {
             unsigned k = 0;
@@ -645,15 +660,14 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
                 for (std::size_t x = x0; x < x0 + tile_w && x < width; ++x) {
                     const std::size_t i = y * width + x;
                     if (i >= n) continue;
-                    in[k] = rays[i];
-                    at[k++] = i;
+                    rp[k] = rays + i;
+                    hp[k++] = hits + i;
                 }
             if (k == 0u) continue;
             if (wide)
-                svo_trace_packet16(words, tree, in, out, k, cone);
+                svo_packet_detail::packet16(words, tree, rp, hp, k, cone);
             else
-                svo_trace_packet8(words, tree, in, out, k, cone);
-            for (unsigned j = 0; j < k; ++j) hits[at[j]] = out[j];
+                svo_packet_detail::packet8(words, tree, rp, hp, k, cone);
         }
 }
 

@@ -7,10 +7,10 @@
 // defined, and undefines them after. Not a header of its own: no include guard on purpose.
 
 // The walk of one packet: `lanes` are rays whose set-up came out of rk_svo_trace_begin_'s twin with
-// one and the same `flip`. Answers hits[i] for them; returns the lanes still unanswered when the node
+// one and the same `flip`. Answers *hits[i] for them; returns the lanes still unanswered when the node
 // bound was reached (0 normally).
 RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_svo_tree& tree, const RK_SVO_PW_SETUP& S,
-                                                unsigned lanes, uint32_t flip, rk_svo_trace_hit* hits)
+                                                unsigned lanes, uint32_t flip, rk_svo_trace_hit* const* hits)
 {
     using L = RK_SVO_PW_LANES;
     using V = typename L::V;
