@@ -36,6 +36,9 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #endif
 
     WalkCtx w = walk_ctx(tree);
+    // A tree larger than a core's cache (1 MiB of geometry) gains from fetching a node ahead; a
+    // smaller one only pays for it.
+    const bool far_tree = tree.brick_base_word > (1u << 18u);
     Entry stack[8 * (RK_SVO_MAX_DEPTH + 2)];
     int sp = 0;
     Entry root = Entry();
@@ -51,6 +54,13 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         const Entry e = stack[--sp];
         unsigned R = e.rays & active;
         if (R == 0u) continue;
+        if (far_tree && sp > 0 && stack[sp - 1].level < w.top) {
+            // The node after this one's subtree: its children are fetched now (its descriptor was
+            // fetched with its siblings'), so that two nodes' misses overlap.
+            const uint32_t nh = stack[sp - 1].handle;
+            const uint32_t nd = words[nh];
+            if (!rk_svo_is_far(nd)) prefetch_children(words, tree, nh + rk_svo_rel_ptr(nd), stack[sp - 1].level + 1u == w.top);
+        }
 #if RK_SVO_TRAVERSE_LOD
         if ((e.stops & R) != 0u) {
             // Rays whose footprint stopped them at this node when it was pushed: it is the first
