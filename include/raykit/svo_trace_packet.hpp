@@ -284,6 +284,35 @@ inline uint32_t first_child(const uint32_t* words, const Entry& e, uint32_t pdes
     return rk_svo_first_child(e.handle, pdesc, far_word);
 }
 
+// Ray i of set-up S in the brick `b` (its masks loaded into w by node_mask): its first voxel of the
+// 64 at once (L::brick_hit); if there is one, answers *hits[i] and returns true. tl: next_up(t_hi).
+template <class L, class SetupT>
+RK_SVO_RAYS_FORCE_INLINE bool brick_ray(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, const Entry& b, int i, float tl, uint32_t flip,
+                      WalkCtx& w, uint32_t iter, rk_svo_trace_hit* const* hits)
+{
+    const float q = 0.25f * uintBitsToFloat((127u - b.level) << 23u);
+    const uint64_t occ = mirror64(uint64_t(w.bmx) | (uint64_t(w.bmy) << 32u), flip);
+    float lo = 0.0f;
+    const int m = L::brick_hit(glm::vec3(b.px, b.py, b.pz), q, glm::vec3(S.cx[i], S.cy[i], S.cz[i]), glm::vec3(S.bx[i], S.by[i], S.bz[i]),
+                               S.t_min[i], S.t_hi[i], tl, occ, lo);
+    if (m < 0) return false;
+    const int ks = m >> 3;
+    Entry sub = Entry();
+    sub.px = b.px + 2.0f * q * float(ks & 1);
+    sub.py = b.py + 2.0f * q * float((ks >> 1) & 1);
+    sub.pz = b.pz + 2.0f * q * float((ks >> 2) & 1);
+    sub.level = b.level + 1u;
+    sub.handle = uint32_t(ks) ^ flip;
+    int32_t k_out[16];
+    float lo_out[16];
+    k_out[i] = m & 7;
+    lo_out[i] = lo;
+    uint32_t no_desc;
+    const uint32_t m8s = node_mask(words, tree, sub, w, no_desc);  // the sub-node's byte of the brick
+    finish_hits(words, tree, S, 1u << i, k_out, lo_out, sub, flip, no_desc, m8s, w, iter, hits);
+    return true;
+}
+
 // Asks the cache for the children of a node above the bricks (first: the first child's handle;
 // bricks: they are bricks, whose masks are two words each).
 inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, uint32_t first, bool bricks)

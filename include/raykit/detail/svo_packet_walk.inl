@@ -98,29 +98,55 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             if (e.level == w.top && w.b == 2u && w.leaf == tree.depth && bitCount(R) <= 4) {
                 // A brick reached by at most four rays: each ray's first voxel of the 64 at once
                 // (L::brick_hit) instead of expanding the brick and its sub-nodes.
-                const float q = 0.25f * uintBitsToFloat((127u - e.level) << 23u);
-                const uint64_t occ = mirror64(uint64_t(w.bmx) | (uint64_t(w.bmy) << 32u), flip);
                 for (unsigned rest = R; rest != 0u; rest &= rest - 1u) {
                     const int i = svo_rays_detail::lowest_bit(rest);
-                    float lo = 0.0f;
-                    const int m = L::brick_hit(glm::vec3(e.px, e.py, e.pz), q, glm::vec3(S.cx[i], S.cy[i], S.cz[i]),
-                                               glm::vec3(S.bx[i], S.by[i], S.bz[i]), S.t_min[i], S.t_hi[i], tl_lane[i], occ, lo);
-                    if (m < 0) continue;
-                    const int ks = m >> 3;
-                    const uint32_t cs = uint32_t(ks) ^ flip;
-                    Entry sub = Entry();
-                    sub.px = e.px + 2.0f * q * float(ks & 1);
-                    sub.py = e.py + 2.0f * q * float((ks >> 1) & 1);
-                    sub.pz = e.pz + 2.0f * q * float((ks >> 2) & 1);
-                    sub.level = e.level + 1u;
-                    sub.handle = cs;
-                    k_out[i] = m & 7;
-                    lo_out[i] = lo;
-                    uint32_t no_desc;
-                    const uint32_t m8s = node_mask(words, tree, sub, w, no_desc);  // the sub-node's byte of the brick
-                    finish_hits(words, tree, S, 1u << i, k_out, lo_out, sub, flip, no_desc, m8s, w, iter, hits);
-                    active &= ~(1u << i);
+                    if (brick_ray<L>(words, tree, S, e, i, tl_lane[i], flip, w, iter, hits)) active &= ~(1u << i);
                 }
+                continue;
+            }
+            if (e.level + 1u == w.top && w.b == 2u && w.leaf == tree.depth && (R & (R - 1u)) == 0u) {
+                // One ray in a node whose children are bricks: its children in front-to-back order
+                // on scalars (the walk's plane expressions and order of max and min), each brick it
+                // enters resolved by brick_ray, until one has its voxel; no pushes.
+                const int i = svo_rays_detail::lowest_bit(R);
+                const float size = uintBitsToFloat((127u - e.level) << 23u);
+                const float half = 0.5f * size;
+                const float cx = S.cx[i], cy = S.cy[i], cz = S.cz[i], bx = S.bx[i], by = S.by[i], bz = S.bz[i];
+                const float X0[3] = {e.px * cx - bx, e.py * cy - by, e.pz * cz - bz};
+                const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
+                const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
+                const float t0 = S.t_min[i], th = S.t_hi[i], tl = tl_lane[i];
+                for (uint32_t rest = mirror_mask(m8, flip); rest != 0u;) {
+                    const int k = highest_bit(rest);
+                    rest &= ~(1u << k);
+                    const float ex = (k & 1) ? E1[0] : Mi[0], ey = (k & 2) ? E1[1] : Mi[1], ez = (k & 4) ? E1[2] : Mi[2];
+                    const float xx = (k & 1) ? Mi[0] : X0[0], xy = (k & 2) ? Mi[1] : X0[1], xz = (k & 4) ? Mi[2] : X0[2];
+                    const float a = ex > ey ? ex : ey, b = ez > t0 ? ez : t0;
+                    const float lo = a > b ? a : b;
+                    const float c = xx < xy ? xx : xy, d = xz < tl ? xz : tl;
+                    float hi = c < d ? c : d;
+                    hi = hi >= th ? tl : hi;
+                    if (!(lo < hi)) continue;
+                    if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+                        bounded = true;
+                        break;
+                    }
+                    ++iter;
+                    Entry br = Entry();
+                    br.px = e.px + half * float(k & 1);
+                    br.py = e.py + half * float((k >> 1) & 1);
+                    br.pz = e.pz + half * float((k >> 2) & 1);
+                    br.level = e.level + 1u;
+                    br.handle = first + rk_svo_child_rank(m8, uint32_t(k) ^ flip);
+                    br.rays = R;
+                    uint32_t no_desc;
+                    node_mask(words, tree, br, w, no_desc);  // the brick's masks
+                    if (brick_ray<L>(words, tree, S, br, i, tl, flip, w, iter, hits)) {
+                        active &= ~R;
+                        break;
+                    }
+                }
+                if (bounded) break;
                 continue;
             }
         }
