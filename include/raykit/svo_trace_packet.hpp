@@ -624,6 +624,17 @@ inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
     packet8(words, tree, rp, hp, n < 8u ? n : 8u, cone);
     if (n > 8u) packet8(words, tree, rp + 8, hp + 8, n - 8u, cone);
 }
+
+// packet8 or packet16 (`fn`) on n <= N contiguous rays and answers.
+template <unsigned N, class PacketFn>
+inline void packet_contiguous(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits, unsigned n,
+                              glm::vec2 cone, PacketFn fn)
+{
+    const SvoRay* rp[N];
+    rk_svo_trace_hit* hp[N];
+    for (unsigned i = 0; i < n; ++i) rp[i] = rays + i, hp[i] = hits + i;
+    fn(words, tree, rp, hp, n, cone);
+}
 }  // namespace svo_packet_detail
 
 /// svo_trace_packet8: hits[i] = the answer of rk_svo_trace(words, tree, rays[i].origin, rays[i].dir,
@@ -636,11 +647,7 @@ inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
 inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
                               unsigned n = 8u, glm::vec2 cone = glm::vec2(0.0f))
 {
-    if (n > 8u) n = 8u;
-    const SvoRay* rp[8];
-    rk_svo_trace_hit* hp[8];
-    for (unsigned i = 0; i < n; ++i) rp[i] = rays + i, hp[i] = hits + i;
-    svo_packet_detail::packet8(words, tree, rp, hp, n, cone);
+    svo_packet_detail::packet_contiguous<8>(words, tree, rays, hits, n < 8u ? n : 8u, cone, svo_packet_detail::packet8);
 }
 
 /// svo_trace_packet16: svo_trace_packet8 for up to 16 rays (a 4x4 pixel tile) sharing one traversal
@@ -650,11 +657,7 @@ inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, co
 inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
                                unsigned n = 16u, glm::vec2 cone = glm::vec2(0.0f))
 {
-    if (n > 16u) n = 16u;
-    const SvoRay* rp[16];
-    rk_svo_trace_hit* hp[16];
-    for (unsigned i = 0; i < n; ++i) rp[i] = rays + i, hp[i] = hits + i;
-    svo_packet_detail::packet16(words, tree, rp, hp, n, cone);
+    svo_packet_detail::packet_contiguous<16>(words, tree, rays, hits, n < 16u ? n : 16u, cone, svo_packet_detail::packet16);
 }
 
 /// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 4 x 4 where
