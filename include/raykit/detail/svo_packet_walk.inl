@@ -179,10 +179,21 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         C[3] = L::min(Mx, My);
         D[0] = L::min(Xz0, TL);
         D[1] = L::min(Mz, TL);
-        if (e.level + 1u >= w.leaf) {
-            // The children are answers: the first a ray reaches in front-to-back order is its hit
-            // (chosen on the lanes, no branch per child; then one finish per ray that hit).
-            M left = L::mask_of(R);
+        // Rays answered among the children: all of them at the leaf level; in a LOD build also those
+        // whose footprint stops them at every child they enter (at the node's entry, where a child's
+        // entry is at the earliest, it is already a child wide, and it only widens along the ray).
+        unsigned now = e.level + 1u >= w.leaf ? R : 0u;
+#if RK_SVO_TRAVERSE_LOD
+        const V half_v = L::set1(half);
+        if (now == 0u) {
+            const V entry = L::max(L::max(Ex1, Ey1), L::max(Ez1, T0));
+            now = L::le_bits(half_v, L::add(LB, L::mul(LS, L::add(TE, entry)))) & R;
+        }
+#endif
+        if (now != 0u) {
+            // The first child a ray reaches in front-to-back order is its hit (chosen on the lanes,
+            // no branch per child; then one finish per ray that hit).
+            M left = L::mask_of(now);
             I hk = L::zero_i();
             V hlo = L::zero();
             for (uint32_t rest = mm; rest != 0u;) {
@@ -195,18 +206,17 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                 hlo = L::blend(in, hlo, lo);
                 left = L::and_not(in, left);
             }
-            const unsigned hm = R & ~L::bits(left);
-            if (hm == 0u) continue;
-            L::store_i(k_out, hk);
-            L::store(lo_out, hlo);
-            finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
-            active &= ~hm;
-            continue;
+            const unsigned hm = now & ~L::bits(left);
+            if (hm != 0u) {
+                L::store_i(k_out, hk);
+                L::store(lo_out, hlo);
+                finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
+                active &= ~hm;
+            }
+            R &= ~now;
+            if (R == 0u) continue;
         }
         // Inner children: pushed back to front (the first to visit on top).
-#if RK_SVO_TRAVERSE_LOD
-        const V half_v = L::set1(half);
-#endif
         for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
             const int k = svo_rays_detail::lowest_bit(rest);
             const V lo = L::max(A[k & 3], Bk[k >> 2]);
