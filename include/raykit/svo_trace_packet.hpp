@@ -20,7 +20,8 @@
 // Rays of different octants in one packet are traced as one packet per octant. A packet that
 // expands more than RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. In a
 // LOD build (RK_SVO_TRAVERSE_LOD=1) each lane tests rk_svo_trace's footprint stop on the children
-// it enters; a ray stopped at a child is answered when the walk reaches that child (front to back).
+// it enters; a ray stopped at a child is answered when the walk reaches that child (front to back),
+// or at once, at the first child it enters, when its footprint is a child wide at the node's entry.
 // CPUs without AVX2 and POPCNT, trees of 2^31 words or more and max_level 0 use rk_svo_trace per
 // ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones, with the same
 // answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
