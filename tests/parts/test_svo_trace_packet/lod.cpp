@@ -1,7 +1,8 @@
 // test_svo_trace_packet's second build: level of detail on, so that the packets' footprint stops
 // (each lane's test on the children it enters, answered when the walk reaches that child) are
-// compared with rk_svo_trace's, ray by ray, on random trees and voxelised meshes, with a footprint
-// that stops rays at several levels and one that stops every ray at the root.
+// compared with rk_svo_trace's, ray by ray, on random trees and voxelised meshes, with footprints
+// that stop rays at several levels (growing with distance, constant, steep) and one that stops every
+// ray at the root.
 #define RK_SVO_TRAVERSE_LOD 1
 #include "../../svo_trace_packet_check.hpp"
 
@@ -39,6 +40,19 @@ TEST(SvoTracePacket, LodBuildSameAnswers)
         compare((std::string(b.name) + " max_level 7 camera").c_str(), t, camera(t, glm::vec3(0.45f, 0.35f, 1.0f), 64, 48), 64, total,
                 7u, cone);
     }
+    // Footprints of other shapes on a depth-8 tree 4 units wide: constant (bias only, 0.1 units: every
+    // ray stops at level 6, 1/16 unit, wherever it is, so a node's rays are answered among its
+    // children at once) and steep (rays stop a few levels below the root, deeper near the camera).
+    SvoTree r8 = svotest::pack_cells(8, svotest::random_cells(8, 12000, 5));
+    r8.root_min = glm::vec3(-2.0f, 0.5f, 8.0f);
+    r8.root_size = 4.0f;
+    Tally flat, steep;
+    all_sets("LOD random d8, constant footprint", r8, flat, 1, glm::vec2(0.1f, 0.0f));
+    all_sets("LOD random d8, steep footprint", r8, steep, 1, glm::vec2(0.0f, 0.05f));
+    EXPECT_EQ(flat.coarse, flat.hits) << "a constant footprint of 1.6 level-6 nodes stops every hit above the leaves";
+    EXPECT_GT(steep.coarse, steep.hits / 2);
+    expect_totals("LOD constant footprint", flat);
+    expect_totals("LOD steep footprint", steep);
     expect_totals("LOD build", total);
     std::printf("[packet] LOD build: %ld of %ld hits stop above the tree's max_level\n", total.coarse, total.hits);
     EXPECT_GT(total.coarse, total.hits / 5) << "the footprint must stop rays at coarse levels for the test to mean anything";
