@@ -154,8 +154,8 @@ RK_SVO_PACKET_TARGET inline unsigned setup8(const rk_svo_tree& tree, const SvoRa
 
 // A node to visit: its mirrored minimum corner, level, handle (descriptor or brick ordinal, or the
 // sub-node's slot inside the current brick) and the rays that reach it. In a LOD build also the rays
-// whose footprint stops them at this node, and what their hit needs of the parent (its handle,
-// descriptor, child mask, and the node's mirrored slot in it).
+// whose footprint stops them at this node, and the parent's handle: their hit's parent descriptor,
+// child mask and slot are found again from it and the corner (24 + 8 bytes).
 struct Entry {
     float px, py, pz;
     uint32_t level;
@@ -164,8 +164,6 @@ struct Entry {
 #if RK_SVO_TRAVERSE_LOD
     uint32_t stops;
     uint32_t phandle;
-    uint32_t ppdesc;
-    uint32_t pslot;  // the slot k | the parent's child mask << 8
 #endif
 };
 
@@ -328,7 +326,7 @@ inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, ui
 // Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
 // branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
 inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
-                       unsigned cm, unsigned stops, uint32_t pdesc)
+                       unsigned cm, unsigned stops)
 {
     const float half = uintBitsToFloat((126u - e.level) << 23u);
     const uint32_t c = uint32_t(k) ^ flip;
@@ -342,11 +340,8 @@ inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t fl
 #if RK_SVO_TRAVERSE_LOD
     ch.stops = stops;
     ch.phandle = e.handle;
-    ch.ppdesc = pdesc;
-    ch.pslot = uint32_t(k) | (m8 << 8u);
 #else
     (void)stops;
-    (void)pdesc;
 #endif
     sp += cm != 0u ? 1 : 0;
 }

@@ -71,11 +71,17 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             const V lo = L::max(L::max(L::sub(L::mul(L::set1(e.px + sz), Cx), Bx), L::sub(L::mul(L::set1(e.py + sz), Cy), By)),
                                 L::max(L::sub(L::mul(L::set1(e.pz + sz), Cz), Bz), T0));
             L::store(lo_out, lo);
-            const int k = int(e.pslot & 7u);
+            // The node's mirrored slot k is bit (23 - level) of its corner's coordinates (in [1, 2));
+            // the parent's descriptor and child mask are read again (a brick's: the one in w).
+            const uint32_t bit = 23u - e.level;
+            const int k = int(((floatBitsToUint(e.px) >> bit) & 1u) | (((floatBitsToUint(e.py) >> bit) & 1u) << 1u) |
+                              (((floatBitsToUint(e.pz) >> bit) & 1u) << 2u));
             for (int i = 0; i < L::N; ++i) k_out[i] = k;
             const Entry parent{(k & 1) ? e.px - sz : e.px, (k & 2) ? e.py - sz : e.py, (k & 4) ? e.pz - sz : e.pz, e.level - 1u,
-                               e.phandle, 0u, 0u, 0u, 0u, 0u};
-            finish_hits(words, tree, S, hm, k_out, lo_out, parent, flip, e.ppdesc, e.pslot >> 8u, w, iter, hits);
+                               e.phandle, 0u, 0u, 0u};
+            uint32_t ppdesc;
+            const uint32_t pm8 = node_mask(words, tree, parent, w, ppdesc);
+            finish_hits(words, tree, S, hm, k_out, lo_out, parent, flip, ppdesc, pm8, w, iter, hits);
             active &= ~hm;
             R &= ~hm;
             if (R == 0u) continue;
@@ -227,7 +233,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #else
             const unsigned stops = 0u;
 #endif
-            push_child(stack, sp, e, k, flip, m8, first, w, cm, stops, pdesc);
+            push_child(stack, sp, e, k, flip, m8, first, w, cm, stops);
         }
     }
     return end_walk(active, iter, bounded, hits);
