@@ -323,19 +323,26 @@ inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, ui
     _mm_prefetch(reinterpret_cast<const char*>(p + (bricks ? 15 : 7)), _MM_HINT_T0);
 }
 
-// Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
-// branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
-inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
-                       unsigned cm, unsigned stops)
+// Writes the corner, level and handle of mirrored child k of `e` into `ch` (m8: e's child mask in
+// format slots; first: its first child's handle, above the bricks).
+inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w)
 {
     const float half = uintBitsToFloat((126u - e.level) << 23u);
     const uint32_t c = uint32_t(k) ^ flip;
-    Entry& ch = stack[sp];
     ch.px = e.px + half * float(k & 1);
     ch.py = e.py + half * float((k >> 1) & 1);
     ch.pz = e.pz + half * float((k >> 2) & 1);
     ch.level = e.level + 1u;
     ch.handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
+}
+
+// Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
+// branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
+inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
+                       unsigned cm, unsigned stops)
+{
+    Entry& ch = stack[sp];
+    set_child(ch, e, k, flip, m8, first, w);
     ch.rays = cm;
 #if RK_SVO_TRAVERSE_LOD
     ch.stops = stops;

@@ -139,11 +139,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                     }
                     ++iter;
                     Entry br = Entry();
-                    br.px = e.px + half * float(k & 1);
-                    br.py = e.py + half * float((k >> 1) & 1);
-                    br.pz = e.pz + half * float((k >> 2) & 1);
-                    br.level = e.level + 1u;
-                    br.handle = first + rk_svo_child_rank(m8, uint32_t(k) ^ flip);
+                    set_child(br, e, k, flip, m8, first, w);
                     br.rays = R;
                     uint32_t no_desc;
                     node_mask(words, tree, br, w, no_desc);  // the brick's masks
