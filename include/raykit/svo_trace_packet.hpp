@@ -325,13 +325,16 @@ inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, ui
 
 // Writes the corner, level and handle of mirrored child k of `e` into `ch` (m8: e's child mask in
 // format slots; first: its first child's handle, above the bricks).
+// A corner of a level-L node in [1, 2) has no mantissa bit below 2^-L, so adding the child's half
+// edge 2^-(L+1) is setting bit 22 - L: the same float as e.px + half * bit, on integers (no int-to-float
+// conversion, which also waits on an unrelated register).
 inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w)
 {
-    const float half = uintBitsToFloat((126u - e.level) << 23u);
+    const uint32_t s = 22u - e.level;
     const uint32_t c = uint32_t(k) ^ flip;
-    ch.px = e.px + half * float(k & 1);
-    ch.py = e.py + half * float((k >> 1) & 1);
-    ch.pz = e.pz + half * float((k >> 2) & 1);
+    ch.px = uintBitsToFloat(floatBitsToUint(e.px) | ((uint32_t(k) & 1u) << s));
+    ch.py = uintBitsToFloat(floatBitsToUint(e.py) | (((uint32_t(k) >> 1u) & 1u) << s));
+    ch.pz = uintBitsToFloat(floatBitsToUint(e.pz) | (((uint32_t(k) >> 2u) & 1u) << s));
     ch.level = e.level + 1u;
     ch.handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
 }
@@ -396,6 +399,7 @@ struct Lanes8 {
     // expansions there (docs/svo-traverse.md).
     static constexpr bool kBrickHit = false;
     static int brick_hit(const glm::vec3&, float, const glm::vec3&, const glm::vec3&, float, float, float, uint64_t, float&) { return -1; }
+    static unsigned children8(const float*, const float*, const float*, float, float, float) { return 0u; }
 };
 
 #define RK_SVO_PW_NAME walk
@@ -482,6 +486,25 @@ struct Lanes16 {
     // ray are disjoint, so that is the walk's two-level answer, without its branches (ties: the
     // highest m, the walk's order).
     static constexpr bool kBrickHit = true;
+    // One ray's 8 children at once, a lane each (lane k: mirrored child k), without a branch per
+    // child: X0, Mi, E1 are the ray's exit, middle and entry plane distances of the node per axis;
+    // child k's entry plane is E1 or Mi and its exit plane Mi or X0 by bit a of k; returns the
+    // children whose interval [lo, hi) is not empty (the walk's expressions; t0, th, tl as there).
+    RK_SVO_PACKET16_TARGET static unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl)
+    {
+        const __m256 bx = _mm256_castsi256_ps(_mm256_setr_epi32(0, -1, 0, -1, 0, -1, 0, -1));
+        const __m256 by = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, -1, -1, 0, 0, -1, -1));
+        const __m256 bz = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, 0, 0, -1, -1, -1, -1));
+        const __m256 mx = _mm256_set1_ps(Mi[0]), my = _mm256_set1_ps(Mi[1]), mz = _mm256_set1_ps(Mi[2]);
+        const __m256 ex = _mm256_blendv_ps(mx, _mm256_set1_ps(E1[0]), bx), xx = _mm256_blendv_ps(_mm256_set1_ps(X0[0]), mx, bx);
+        const __m256 ey = _mm256_blendv_ps(my, _mm256_set1_ps(E1[1]), by), xy = _mm256_blendv_ps(_mm256_set1_ps(X0[1]), my, by);
+        const __m256 ez = _mm256_blendv_ps(mz, _mm256_set1_ps(E1[2]), bz), xz = _mm256_blendv_ps(_mm256_set1_ps(X0[2]), mz, bz);
+        const __m256 TLv = _mm256_set1_ps(tl);
+        const __m256 lo = _mm256_max_ps(_mm256_max_ps(ex, ey), _mm256_max_ps(ez, _mm256_set1_ps(t0)));
+        __m256 hi = _mm256_min_ps(_mm256_min_ps(xx, xy), _mm256_min_ps(xz, TLv));
+        hi = _mm256_blendv_ps(hi, TLv, _mm256_cmp_ps(hi, _mm256_set1_ps(th), _CMP_GE_OQ));
+        return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ)));
+    }
     RK_SVO_PACKET16_TARGET static V perm(__m512i idx, V table) { return _mm512_maskz_permutexvar_ps(static_cast<__mmask16>(0xFFFFu), idx, table); }
     RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,
                                                 float tl, uint64_t occ, float& lo_out)

@@ -122,17 +122,9 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                 const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
                 const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
                 const float t0 = S.t_min[i], th = S.t_hi[i], tl = tl_lane[i];
-                for (uint32_t rest = mirror_mask(m8, flip); rest != 0u;) {
+                for (uint32_t rest = mirror_mask(m8, flip) & L::children8(X0, Mi, E1, t0, th, tl); rest != 0u;) {
                     const int k = highest_bit(rest);
                     rest &= ~(1u << k);
-                    const float ex = (k & 1) ? E1[0] : Mi[0], ey = (k & 2) ? E1[1] : Mi[1], ez = (k & 4) ? E1[2] : Mi[2];
-                    const float xx = (k & 1) ? Mi[0] : X0[0], xy = (k & 2) ? Mi[1] : X0[1], xz = (k & 4) ? Mi[2] : X0[2];
-                    const float a = ex > ey ? ex : ey, b = ez > t0 ? ez : t0;
-                    const float lo = a > b ? a : b;
-                    const float c = xx < xy ? xx : xy, d = xz < tl ? xz : tl;
-                    float hi = c < d ? c : d;
-                    hi = hi >= th ? tl : hi;
-                    if (!(lo < hi)) continue;
                     if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
                         bounded = true;
                         break;
