@@ -29,9 +29,9 @@
 // not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth). Where few
 // rays reach a 4^3 brick, the 16-lane walk finds each one's first voxel among the brick's 64 at
 // once (Lanes16::brick_hit, full-detail builds), a ray alone above the bricks takes them in order
-// without the stack, and a node reached by one ray tests its 8 children for it at once
-// (Lanes16::children8). A node's children are fetched into the cache as soon as it is read (and,
-// in trees beyond 1 MiB, the next stacked node's too). Measured speed-ups by depth and tile are in
+// without the stack, and a node reached by one ray tests its 8 children for it at once (children8,
+// both widths). A node's children are fetched into the cache as soon as it is read (and, in trees
+// beyond 1 MiB, the next stacked node's too). Measured speed-ups by depth and tile are in
 // docs/svo-traverse.md.
 #pragma once
 
@@ -357,6 +357,29 @@ inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t fl
     sp += cm != 0u ? 1 : 0;
 }
 
+// One ray's 8 children at once, a lane each (lane k: mirrored child k), without a branch per
+// child: X0, Mi, E1 are the ray's exit, middle and entry plane distances of the node per axis;
+// child k's entry plane is E1 or Mi and its exit plane Mi or X0 by bit a of k; returns the
+// children whose interval [lo, hi) is not empty (the walk's expressions; t0, th, tl as there)
+// and writes their lo to lo8[k].
+RK_SVO_PACKET_TARGET inline unsigned children8_avx(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
+                                                 float* lo8)
+{
+    const __m256 bx = _mm256_castsi256_ps(_mm256_setr_epi32(0, -1, 0, -1, 0, -1, 0, -1));
+    const __m256 by = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, -1, -1, 0, 0, -1, -1));
+    const __m256 bz = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, 0, 0, -1, -1, -1, -1));
+    const __m256 mx = _mm256_set1_ps(Mi[0]), my = _mm256_set1_ps(Mi[1]), mz = _mm256_set1_ps(Mi[2]);
+    const __m256 ex = _mm256_blendv_ps(mx, _mm256_set1_ps(E1[0]), bx), xx = _mm256_blendv_ps(_mm256_set1_ps(X0[0]), mx, bx);
+    const __m256 ey = _mm256_blendv_ps(my, _mm256_set1_ps(E1[1]), by), xy = _mm256_blendv_ps(_mm256_set1_ps(X0[1]), my, by);
+    const __m256 ez = _mm256_blendv_ps(mz, _mm256_set1_ps(E1[2]), bz), xz = _mm256_blendv_ps(_mm256_set1_ps(X0[2]), mz, bz);
+    const __m256 TLv = _mm256_set1_ps(tl);
+    const __m256 lo = _mm256_max_ps(_mm256_max_ps(ex, ey), _mm256_max_ps(ez, _mm256_set1_ps(t0)));
+    __m256 hi = _mm256_min_ps(_mm256_min_ps(xx, xy), _mm256_min_ps(xz, TLv));
+    hi = _mm256_blendv_ps(hi, TLv, _mm256_cmp_ps(hi, _mm256_set1_ps(th), _CMP_GE_OQ));
+    _mm256_storeu_ps(lo8, lo);
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ)));
+}
+
 // The lanes of a packet, as the walk (detail/svo_packet_walk.inl) uses them: V the planes, M a
 // lane mask, I the lanes' child slots. 8 lanes on AVX2, masks as vectors.
 struct Lanes8 {
@@ -400,7 +423,11 @@ struct Lanes8 {
     // expansions there (docs/svo-traverse.md).
     static constexpr bool kBrickHit = false;
     static int brick_hit(const glm::vec3&, float, const glm::vec3&, const glm::vec3&, float, float, float, uint64_t, float&) { return -1; }
-    static unsigned children8(const float*, const float*, const float*, float, float, float, float*) { return 0u; }
+    RK_SVO_PACKET_TARGET static unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
+                                                   float* lo8)
+    {
+        return children8_avx(X0, Mi, E1, t0, th, tl, lo8);
+    }
 };
 
 #define RK_SVO_PW_NAME walk
@@ -487,27 +514,10 @@ struct Lanes16 {
     // ray are disjoint, so that is the walk's two-level answer, without its branches (ties: the
     // highest m, the walk's order).
     static constexpr bool kBrickHit = true;
-    // One ray's 8 children at once, a lane each (lane k: mirrored child k), without a branch per
-    // child: X0, Mi, E1 are the ray's exit, middle and entry plane distances of the node per axis;
-    // child k's entry plane is E1 or Mi and its exit plane Mi or X0 by bit a of k; returns the
-    // children whose interval [lo, hi) is not empty (the walk's expressions; t0, th, tl as there)
-    // and writes their lo to lo8[k].
     RK_SVO_PACKET16_TARGET static unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
                                                      float* lo8)
     {
-        const __m256 bx = _mm256_castsi256_ps(_mm256_setr_epi32(0, -1, 0, -1, 0, -1, 0, -1));
-        const __m256 by = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, -1, -1, 0, 0, -1, -1));
-        const __m256 bz = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, 0, 0, -1, -1, -1, -1));
-        const __m256 mx = _mm256_set1_ps(Mi[0]), my = _mm256_set1_ps(Mi[1]), mz = _mm256_set1_ps(Mi[2]);
-        const __m256 ex = _mm256_blendv_ps(mx, _mm256_set1_ps(E1[0]), bx), xx = _mm256_blendv_ps(_mm256_set1_ps(X0[0]), mx, bx);
-        const __m256 ey = _mm256_blendv_ps(my, _mm256_set1_ps(E1[1]), by), xy = _mm256_blendv_ps(_mm256_set1_ps(X0[1]), my, by);
-        const __m256 ez = _mm256_blendv_ps(mz, _mm256_set1_ps(E1[2]), bz), xz = _mm256_blendv_ps(_mm256_set1_ps(X0[2]), mz, bz);
-        const __m256 TLv = _mm256_set1_ps(tl);
-        const __m256 lo = _mm256_max_ps(_mm256_max_ps(ex, ey), _mm256_max_ps(ez, _mm256_set1_ps(t0)));
-        __m256 hi = _mm256_min_ps(_mm256_min_ps(xx, xy), _mm256_min_ps(xz, TLv));
-        hi = _mm256_blendv_ps(hi, TLv, _mm256_cmp_ps(hi, _mm256_set1_ps(th), _CMP_GE_OQ));
-        _mm256_storeu_ps(lo8, lo);
-        return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_LT_OQ)));
+        return children8_avx(X0, Mi, E1, t0, th, tl, lo8);
     }
     RK_SVO_PACKET16_TARGET static V perm(__m512i idx, V table) { return _mm512_maskz_permutexvar_ps(static_cast<__mmask16>(0xFFFFu), idx, table); }
     RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,

@@ -28,8 +28,8 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V T0 = L::blend(lm, L::set1(1.0f), L::load(S.t_min));
     const V TH = L::blend(lm, z, L::load(S.t_hi));
     const V TL = L::blend(lm, z, L::next_up(TH));
-    alignas(64) float tl_lane[L::N];  // TL's lanes, for L::brick_hit
-    if constexpr (L::kBrickHit) L::store(tl_lane, TL);
+    alignas(64) float tl_lane[L::N];  // TL's lanes, for a ray alone (L::children8, L::brick_hit)
+    L::store(tl_lane, TL);
 #if RK_SVO_TRAVERSE_LOD
     // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
     const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
@@ -150,43 +150,41 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         // Plane distances of the node's exit (min corner), middle and entry (max corner) planes.
         const float size = uintBitsToFloat((127u - e.level) << 23u);  // 2^-level
         const float half = 0.5f * size;
-        if constexpr (L::kBrickHit) {
-            if ((R & (R - 1u)) == 0u && e.level + 1u < w.leaf) {
-                // One ray in an inner node: the children it enters, all 8 at once on scalars'
-                // plane distances (the walk's expressions), pushed back to front.
-                const int i = svo_rays_detail::lowest_bit(R);
-                const float cx = S.cx[i], cy = S.cy[i], cz = S.cz[i], bx = S.bx[i], by = S.by[i], bz = S.bz[i];
-                const float X0[3] = {e.px * cx - bx, e.py * cy - by, e.pz * cz - bz};
-                const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
-                const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
-                const float t0 = S.t_min[i];
-                float lo8[8];
-                const uint32_t cm = mm & L::children8(X0, Mi, E1, t0, S.t_hi[i], tl_lane[i], lo8);
+        if ((R & (R - 1u)) == 0u && e.level + 1u < w.leaf) {
+            // One ray in an inner node: the children it enters, all 8 at once on scalars'
+            // plane distances (the walk's expressions), pushed back to front.
+            const int i = svo_rays_detail::lowest_bit(R);
+            const float cx = S.cx[i], cy = S.cy[i], cz = S.cz[i], bx = S.bx[i], by = S.by[i], bz = S.bz[i];
+            const float X0[3] = {e.px * cx - bx, e.py * cy - by, e.pz * cz - bz};
+            const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
+            const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
+            const float t0 = S.t_min[i];
+            float lo8[8];
+            const uint32_t cm = mm & L::children8(X0, Mi, E1, t0, S.t_hi[i], tl_lane[i], lo8);
 #if RK_SVO_TRAVERSE_LOD
-                // The lanes' footprint tests, on this ray's scalars (the same operations).
-                const float ea = E1[0] > E1[1] ? E1[0] : E1[1], eb = E1[2] > t0 ? E1[2] : t0;
-                if (half <= S.lod_bias + S.lod_slope * (S.t_enter[i] + (ea > eb ? ea : eb))) {
-                    // A child wide at the node's entry: the first child it enters is its hit.
-                    if (cm != 0u) {
-                        const int k = highest_bit(cm);
-                        k_out[i] = k;
-                        lo_out[i] = lo8[k];
-                        finish_hits(words, tree, S, R, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
-                        active &= ~R;
-                    }
-                    continue;
+            // The lanes' footprint tests, on this ray's scalars (the same operations).
+            const float ea = E1[0] > E1[1] ? E1[0] : E1[1], eb = E1[2] > t0 ? E1[2] : t0;
+            if (half <= S.lod_bias + S.lod_slope * (S.t_enter[i] + (ea > eb ? ea : eb))) {
+                // A child wide at the node's entry: the first child it enters is its hit.
+                if (cm != 0u) {
+                    const int k = highest_bit(cm);
+                    k_out[i] = k;
+                    lo_out[i] = lo8[k];
+                    finish_hits(words, tree, S, R, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
+                    active &= ~R;
                 }
-                for (uint32_t rest = cm; rest != 0u; rest &= rest - 1u) {
-                    const int k = svo_rays_detail::lowest_bit(rest);
-                    const bool stop = half <= S.lod_bias + S.lod_slope * (S.t_enter[i] + lo8[k]);
-                    push_child(stack, sp, e, k, flip, m8, first, w, R, stop ? R : 0u);
-                }
-#else
-                for (uint32_t rest = cm; rest != 0u; rest &= rest - 1u)
-                    push_child(stack, sp, e, svo_rays_detail::lowest_bit(rest), flip, m8, first, w, R, 0u);
-#endif
                 continue;
             }
+            for (uint32_t rest = cm; rest != 0u; rest &= rest - 1u) {
+                const int k = svo_rays_detail::lowest_bit(rest);
+                const bool stop = half <= S.lod_bias + S.lod_slope * (S.t_enter[i] + lo8[k]);
+                push_child(stack, sp, e, k, flip, m8, first, w, R, stop ? R : 0u);
+            }
+#else
+            for (uint32_t rest = cm; rest != 0u; rest &= rest - 1u)
+                push_child(stack, sp, e, svo_rays_detail::lowest_bit(rest), flip, m8, first, w, R, 0u);
+#endif
+            continue;
         }
         const V Xx0 = L::sub(L::mul(L::set1(e.px), Cx), Bx);
         const V Xy0 = L::sub(L::mul(L::set1(e.py), Cy), By);
