@@ -37,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "raykit/svo_trace_simd.hpp"
 #include "raykit/svo_traverse.hpp"
@@ -167,6 +168,8 @@ struct Entry {
     uint32_t phandle;
 #endif
 };
+static_assert(offsetof(Entry, level) == 12u && offsetof(Entry, handle) == 16u && offsetof(Entry, rays) == 20u,
+              "set_child writes px..level and handle, rays as two blocks");
 
 // Child mask in mirrored slots: bit k = bit (k ^ flip) of m.
 inline uint32_t mirror_mask(uint32_t m, uint32_t flip)
@@ -324,20 +327,23 @@ inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, ui
     _mm_prefetch(reinterpret_cast<const char*>(p + (bricks ? 15 : 7)), _MM_HINT_T0);
 }
 
-// Writes the corner, level and handle of mirrored child k of `e` into `ch` (m8: e's child mask in
-// format slots; first: its first child's handle, above the bricks).
-// A corner of a level-L node in [1, 2) has no mantissa bit below 2^-L, so adding the child's half
-// edge 2^-(L+1) is setting bit 22 - L: the same float as e.px + half * bit, on integers (no int-to-float
-// conversion, which also waits on an unrelated register).
-inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w)
+// Writes the corner, level, handle and rays of mirrored child k of `e` into `ch` (m8: e's child
+// mask in format slots; first: its first child's handle, above the bricks). A corner of a level-L
+// node in [1, 2) has no mantissa bit below 2^-L, so adding the child's half edge 2^-(L+1) is setting
+// bit 22 - L: the same float as e.px + half * bit, on integers. The entry is written as the walk
+// reads it back (16 bytes, then 8: a read that spans several smaller writes waits for them to
+// reach the cache instead of taking them from the store buffer).
+inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w, uint32_t rays)
 {
     const uint32_t s = 22u - e.level;
     const uint32_t c = uint32_t(k) ^ flip;
-    ch.px = uintBitsToFloat(floatBitsToUint(e.px) | ((uint32_t(k) & 1u) << s));
-    ch.py = uintBitsToFloat(floatBitsToUint(e.py) | (((uint32_t(k) >> 1u) & 1u) << s));
-    ch.pz = uintBitsToFloat(floatBitsToUint(e.pz) | (((uint32_t(k) >> 2u) & 1u) << s));
-    ch.level = e.level + 1u;
-    ch.handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
+    const __m128i corner = _mm_setr_epi32(int(floatBitsToUint(e.px) | ((uint32_t(k) & 1u) << s)),
+                                          int(floatBitsToUint(e.py) | (((uint32_t(k) >> 1u) & 1u) << s)),
+                                          int(floatBitsToUint(e.pz) | (((uint32_t(k) >> 2u) & 1u) << s)), int(e.level + 1u));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&ch.px), corner);
+    const uint32_t handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
+    const uint64_t hr = uint64_t(handle) | (uint64_t(rays) << 32u);
+    std::memcpy(&ch.handle, &hr, sizeof hr);
 }
 
 // Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
@@ -346,11 +352,10 @@ inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t fl
                        unsigned cm, unsigned stops)
 {
     Entry& ch = stack[sp];
-    set_child(ch, e, k, flip, m8, first, w);
-    ch.rays = cm;
+    set_child(ch, e, k, flip, m8, first, w, cm);
 #if RK_SVO_TRAVERSE_LOD
-    ch.stops = stops;
-    ch.phandle = e.handle;
+    const uint64_t sp_h = uint64_t(stops) | (uint64_t(e.handle) << 32u);
+    std::memcpy(&ch.stops, &sp_h, sizeof sp_h);
 #else
     (void)stops;
 #endif

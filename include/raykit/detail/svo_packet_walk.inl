@@ -132,8 +132,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                     }
                     ++iter;
                     Entry br = Entry();
-                    set_child(br, e, k, flip, m8, first, w);
-                    br.rays = R;
+                    set_child(br, e, k, flip, m8, first, w, R);
                     uint32_t no_desc;
                     node_mask(words, tree, br, w, no_desc);  // the brick's masks
                     if (brick_ray<L>(words, tree, S, br, i, tl, flip, w, iter, hits)) {
