@@ -159,6 +159,15 @@ void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, c
             continue;
         }
         const double dl = glm::length(glm::dvec3(rays[i].dir));
+        // The same cell has the same entry planes (the same set-up, the same expressions), so the
+        // same face normal, whatever distance either walk reached it at.
+        if (a.hit && b.hit && a.level == b.level && a.cell == b.cell && a.normal != b.normal) {
+            if (tl.bad++ < 4)
+                ADD_FAILURE() << what << ": ray " << i << ": the same cell as rk_svo_trace with another normal: (" << a.normal.x << ","
+                              << a.normal.y << "," << a.normal.z << ") against (" << b.normal.x << "," << b.normal.y << "," << b.normal.z
+                              << ")";
+            continue;
+        }
         if (a.hit == b.hit && a.level == b.level && a.cell == b.cell) {
             const double dt = std::abs(double(a.t) - double(b.t)) * dl / rs;
             if (dt <= ray_tol(rays[i], t)) {

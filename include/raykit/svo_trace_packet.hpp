@@ -5,7 +5,8 @@
 //
 // A C++ twin of rk_svo_trace, not shared text (GLSL has no lanes to program). The set-up is a lanes
 // twin of rk_svo_trace_begin_ (the same float operations in the same order) and the hit is
-// rk_svo_trace_finish_ itself. Rays of one direction octant share the mirroring, so every node has
+// rk_svo_trace_finish_'s shared part (rk_svo_trace_hit_fields_) with the face normal computed on
+// lanes without branches (entry_normal8, L::entry_normal: rk_svo_trace_entry_normal_'s comparisons). Rays of one direction octant share the mirroring, so every node has
 // the same mirrored coordinates for all of them and visiting children in decreasing mirrored slot
 // is front to back for each ray. The packet walks the tree depth first; at a node, each ray's
 // interval in each child is [max(entry planes, t_start), min(exit planes)), with rk_svo_trace's
@@ -238,12 +239,35 @@ inline uint32_t node_mask(const uint32_t* words, const rk_svo_tree& tree, const 
     return ((e.handle < 4u ? w.bmx : w.bmy) >> (8u * (e.handle & 3u))) & 0xFFu;
 }
 
+// rk_svo_trace_entry_normal_ on 8 lanes, without its branches (the same comparisons): the face of
+// the entry plane crossed last (tx, ty, tz), ties to the axis of the larger |u|; -sign(u) on that
+// axis, +0 on the others. Written to nx, ny, nz.
+RK_SVO_PACKET_TARGET inline void entry_normal8(__m256 tx, __m256 ty, __m256 tz, __m256 ux, __m256 uy, __m256 uz, float* nx, float* ny,
+                                               float* nz)
+{
+    const __m256 sg = _mm256_set1_ps(-0.0f), z = _mm256_setzero_ps();
+    const __m256 ax = _mm256_andnot_ps(sg, ux), ay = _mm256_andnot_ps(sg, uy), az = _mm256_andnot_ps(sg, uz);
+    const __m256 c1 = _mm256_or_ps(_mm256_cmp_ps(ty, tx, _CMP_GT_OQ), _mm256_and_ps(_mm256_cmp_ps(ty, tx, _CMP_EQ_OQ), _mm256_cmp_ps(ay, ax, _CMP_GT_OQ)));
+    const __m256 tb = _mm256_blendv_ps(tx, ty, c1), ub = _mm256_blendv_ps(ax, ay, c1);
+    const __m256 c2 = _mm256_or_ps(_mm256_cmp_ps(tz, tb, _CMP_GT_OQ), _mm256_and_ps(_mm256_cmp_ps(tz, tb, _CMP_EQ_OQ), _mm256_cmp_ps(az, ub, _CMP_GT_OQ)));
+    const __m256 one = _mm256_set1_ps(1.0f), m_one = _mm256_set1_ps(-1.0f);
+    // -sign(u): -1 above 0, 1 below, -0 at 0.
+    const __m256 sx = _mm256_blendv_ps(_mm256_blendv_ps(sg, one, _mm256_cmp_ps(ux, z, _CMP_LT_OQ)), m_one, _mm256_cmp_ps(ux, z, _CMP_GT_OQ));
+    const __m256 sy = _mm256_blendv_ps(_mm256_blendv_ps(sg, one, _mm256_cmp_ps(uy, z, _CMP_LT_OQ)), m_one, _mm256_cmp_ps(uy, z, _CMP_GT_OQ));
+    const __m256 sz = _mm256_blendv_ps(_mm256_blendv_ps(sg, one, _mm256_cmp_ps(uz, z, _CMP_LT_OQ)), m_one, _mm256_cmp_ps(uz, z, _CMP_GT_OQ));
+    _mm256_store_ps(nx, _mm256_andnot_ps(_mm256_or_ps(c1, c2), sx));
+    _mm256_store_ps(ny, _mm256_and_ps(_mm256_andnot_ps(c2, c1), sy));
+    _mm256_store_ps(nz, _mm256_and_ps(c2, sz));
+}
+
 // The hits of the lanes `hm` of set-up `S` (Setup or Setup16) in the children of node `e`: lane i
-// entered mirrored child k_out[i] at lo_out[i].
+// entered mirrored child k_out[i] at lo_out[i]. nx, ny, nz: the lanes' face normals where the walk
+// has them (L::entry_normal), else null: entry_normal8 on this lane's scalars.
 template <class SetupT>
-inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, unsigned hm, const int32_t* k_out,
-                        const float* lo_out, const Entry& e, uint32_t flip, uint32_t pdesc, uint32_t m8, const WalkCtx& w,
-                        uint32_t iter, rk_svo_trace_hit* const* hits)
+RK_SVO_PACKET_TARGET inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const SetupT& S, unsigned hm,
+                                             const int32_t* k_out, const float* lo_out, const Entry& e, uint32_t flip, uint32_t pdesc,
+                                             uint32_t m8, const WalkCtx& w, uint32_t iter, rk_svo_trace_hit* const* hits,
+                                             const float* nx = nullptr, const float* ny = nullptr, const float* nz = nullptr)
 {
     for (unsigned m = hm; m != 0u; m &= m - 1u) {
         const int i = svo_rays_detail::lowest_bit(m);
@@ -270,7 +294,19 @@ inline void finish_hits(const uint32_t* words, const rk_svo_tree& tree, const Se
         s.handle = e.handle;
         s.bmask = glm::uvec2(w.bmx, w.bmy);
         s.brick = w.brick;
-        rk_svo_trace_finish_(words, tree, s, true, iter, *hits[i]);
+        // rk_svo_trace_finish_ with the normal on lanes.
+        rk_svo_trace_hit& h = *hits[i];
+        h.iterations = iter;
+        rk_svo_trace_hit_fields_(words, tree, s, h);
+        if (nx != nullptr) {
+            h.normal = glm::vec3(nx[i], ny[i], nz[i]);
+        } else {
+            const glm::vec3 te = (s.pos + glm::vec3(s.size)) * s.coef - s.bias;  // the entry planes of the cell
+            alignas(32) float n1[3][8];
+            entry_normal8(_mm256_set1_ps(te.x), _mm256_set1_ps(te.y), _mm256_set1_ps(te.z), _mm256_set1_ps(s.u.x), _mm256_set1_ps(s.u.y),
+                          _mm256_set1_ps(s.u.z), n1[0], n1[1], n1[2]);
+            h.normal = glm::vec3(n1[0][0], n1[1][0], n1[2][0]);
+        }
     }
 }
 
@@ -424,6 +460,16 @@ struct Lanes8 {
     RK_SVO_PACKET_TARGET static V blend(M m, V a, V b) { return _mm256_blendv_ps(a, b, _mm256_castsi256_ps(m)); }
     RK_SVO_PACKET_TARGET static void store(float* p, V v) { _mm256_store_ps(p, v); }
     RK_SVO_PACKET_TARGET static void store_i(int32_t* p, I v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
+    // Lane by lane: bit `bit` of k set ? b : a.
+    RK_SVO_PACKET_TARGET static V pick(I k, int bit, V a, V b)
+    {
+        const __m256i bv = _mm256_set1_epi32(bit);
+        return _mm256_blendv_ps(a, b, _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(k, bv), bv)));
+    }
+    RK_SVO_PACKET_TARGET static void entry_normal(V tx, V ty, V tz, V ux, V uy, V uz, float* nx, float* ny, float* nz)
+    {
+        entry_normal8(tx, ty, tz, ux, uy, uz, nx, ny, nz);
+    }
     // No brick_hit on 8 lanes: eight groups of 8 voxels are slower than the walk's own brick
     // expansions there (docs/svo-traverse.md).
     static constexpr bool kBrickHit = false;
@@ -510,6 +556,30 @@ struct Lanes16 {
     RK_SVO_PACKET16_TARGET static V blend(M m, V a, V b) { return _mm512_mask_blend_ps(m, a, b); }
     RK_SVO_PACKET16_TARGET static void store(float* p, V v) { _mm512_store_ps(p, v); }
     RK_SVO_PACKET16_TARGET static void store_i(int32_t* p, I v) { _mm512_store_si512(p, v); }
+    RK_SVO_PACKET16_TARGET static V pick(I k, int bit, V a, V b) { return _mm512_mask_blend_ps(_mm512_test_epi32_mask(k, _mm512_set1_epi32(bit)), a, b); }
+    // entry_normal8 on 16 lanes.
+    RK_SVO_PACKET16_TARGET static void entry_normal(V tx, V ty, V tz, V ux, V uy, V uz, float* nx, float* ny, float* nz)
+    {
+        // |u| by the zero-masking and-not (GCC 12's plain one passes an undefined source, see max).
+        const __mmask16 all = static_cast<__mmask16>(0xFFFFu);
+        const __m512i sgn = _mm512_set1_epi32(int(0x80000000u));
+        const V sg = _mm512_castsi512_ps(sgn), z = _mm512_setzero_ps();
+        const V ax = _mm512_castsi512_ps(_mm512_maskz_andnot_epi32(all, sgn, _mm512_castps_si512(ux)));
+        const V ay = _mm512_castsi512_ps(_mm512_maskz_andnot_epi32(all, sgn, _mm512_castps_si512(uy)));
+        const V az = _mm512_castsi512_ps(_mm512_maskz_andnot_epi32(all, sgn, _mm512_castps_si512(uz)));
+        const __mmask16 c1 = static_cast<__mmask16>(_mm512_cmp_ps_mask(ty, tx, _CMP_GT_OQ) |
+                                                    (_mm512_cmp_ps_mask(ty, tx, _CMP_EQ_OQ) & _mm512_cmp_ps_mask(ay, ax, _CMP_GT_OQ)));
+        const V tb = _mm512_mask_blend_ps(c1, tx, ty), ub = _mm512_mask_blend_ps(c1, ax, ay);
+        const __mmask16 c2 = static_cast<__mmask16>(_mm512_cmp_ps_mask(tz, tb, _CMP_GT_OQ) |
+                                                    (_mm512_cmp_ps_mask(tz, tb, _CMP_EQ_OQ) & _mm512_cmp_ps_mask(az, ub, _CMP_GT_OQ)));
+        const V one = _mm512_set1_ps(1.0f), m_one = _mm512_set1_ps(-1.0f);
+        const V sx = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(ux, z, _CMP_GT_OQ), _mm512_mask_blend_ps(_mm512_cmp_ps_mask(ux, z, _CMP_LT_OQ), sg, one), m_one);
+        const V sy = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(uy, z, _CMP_GT_OQ), _mm512_mask_blend_ps(_mm512_cmp_ps_mask(uy, z, _CMP_LT_OQ), sg, one), m_one);
+        const V sz = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(uz, z, _CMP_GT_OQ), _mm512_mask_blend_ps(_mm512_cmp_ps_mask(uz, z, _CMP_LT_OQ), sg, one), m_one);
+        _mm512_store_ps(nx, _mm512_maskz_mov_ps(static_cast<__mmask16>(~(c1 | c2)), sx));
+        _mm512_store_ps(ny, _mm512_maskz_mov_ps(static_cast<__mmask16>(c1 & ~c2), sy));
+        _mm512_store_ps(nz, _mm512_maskz_mov_ps(c2, sz));
+    }
     // One ray in a 4^3 brick, all 64 voxels at once: the brick's mirrored minimum corner p, its
     // voxels' edge q and the ray's plane coefficients c, b give the 5 plane distances
     // (p + j q) c - b of each mirrored axis (the walk's, in the same operations), occ the occupied

@@ -277,15 +277,11 @@ RK_INLINE bool rk_svo_trace_begin_(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin
     return true;
 }
 
-/// rk_svo_trace_finish_: internal. rk_svo_trace's answer after the loop: `found` (the loop stopped
-/// at a node) or a miss, with `iterations` loop iterations.
-RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_state_ s, bool found, uint iterations,
-                                    RK_INOUT(rk_svo_trace_hit) h)
+/// rk_svo_trace_hit_fields_: internal. The answer for the node the loop stopped at, all but the face
+/// normal (svo_trace_packet.hpp computes that on its lanes): un-mirrored cell, level, distance and
+/// where its attributes are.
+RK_INLINE void rk_svo_trace_hit_fields_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_state_ s, RK_INOUT(rk_svo_trace_hit) h)
 {
-    h.iterations = iterations;
-    if (!found) return;
-
-    // Un-mirror the cell, find the entry face, locate the attributes.
     uint lvl = uint(23 - s.scale);
     uint c = s.idx ^ s.flip;
     float px = (s.flip & 1u) != 0u ? 3.0f - s.size - s.pos.x : s.pos.x;
@@ -294,7 +290,6 @@ RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_tra
     uint sh = uint(s.scale);
     h.cell = uvec3((floatBitsToUint(px) & 0x7FFFFFu) >> sh, (floatBitsToUint(py) & 0x7FFFFFu) >> sh,
                    (floatBitsToUint(pz) & 0x7FFFFFu) >> sh);
-    h.normal = rk_svo_trace_entry_normal_((s.pos + vec3(s.size)) * s.coef - s.bias, s.u);  // entry planes of the cell
     h.hit = true;
     h.level = lvl;
     h.t = min((s.t_enter + s.t_min) * s.t_scale, RK_FLT_MAX);
@@ -307,6 +302,17 @@ RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_tra
         h.brick_mask = s.bmask;
         h.brick_bit = lvl == tree.depth && s.b == 2u ? (c | (s.handle << 3u)) : c;
     }
+}
+
+/// rk_svo_trace_finish_: internal. rk_svo_trace's answer after the loop: `found` (the loop stopped
+/// at a node) or a miss, with `iterations` loop iterations.
+RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_state_ s, bool found, uint iterations,
+                                    RK_INOUT(rk_svo_trace_hit) h)
+{
+    h.iterations = iterations;
+    if (!found) return;
+    rk_svo_trace_hit_fields_(buf, tree, s, h);
+    h.normal = rk_svo_trace_entry_normal_((s.pos + vec3(s.size)) * s.coef - s.bias, s.u);  // entry planes of the cell
 }
 
 /// rk_svo_trace: casts the ray origin + t * dir, t in [0, t_max], through `tree` and returns the

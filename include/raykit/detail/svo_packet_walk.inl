@@ -49,6 +49,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     uint32_t iter = 0u;
     alignas(64) float lo_out[L::N];
     alignas(64) int32_t k_out[L::N];
+    alignas(64) float nx[L::N], ny[L::N], nz[L::N];  // hits' face normals (L::entry_normal)
     bool bounded = false;
     while (sp > 0) {
         const Entry e = stack[--sp];
@@ -68,9 +69,10 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             // the parent computed it (the same planes, the same order of max).
             const unsigned hm = e.stops & R;
             const float sz = uintBitsToFloat((127u - e.level) << 23u);
-            const V lo = L::max(L::max(L::sub(L::mul(L::set1(e.px + sz), Cx), Bx), L::sub(L::mul(L::set1(e.py + sz), Cy), By)),
-                                L::max(L::sub(L::mul(L::set1(e.pz + sz), Cz), Bz), T0));
-            L::store(lo_out, lo);
+            const V ex = L::sub(L::mul(L::set1(e.px + sz), Cx), Bx), ey = L::sub(L::mul(L::set1(e.py + sz), Cy), By);
+            const V ez = L::sub(L::mul(L::set1(e.pz + sz), Cz), Bz);
+            L::store(lo_out, L::max(L::max(ex, ey), L::max(ez, T0)));
+            L::entry_normal(ex, ey, ez, L::load(S.ux), L::load(S.uy), L::load(S.uz), nx, ny, nz);
             // The node's mirrored slot k is bit (23 - level) of its corner's coordinates (in [1, 2));
             // the parent's descriptor and child mask are read again (a brick's: the one in w).
             const uint32_t bit = 23u - e.level;
@@ -81,7 +83,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                                e.phandle, 0u, 0u, 0u};
             uint32_t ppdesc;
             const uint32_t pm8 = node_mask(words, tree, parent, w, ppdesc);
-            finish_hits(words, tree, S, hm, k_out, lo_out, parent, flip, ppdesc, pm8, w, iter, hits);
+            finish_hits(words, tree, S, hm, k_out, lo_out, parent, flip, ppdesc, pm8, w, iter, hits, nx, ny, nz);
             active &= ~hm;
             R &= ~hm;
             if (R == 0u) continue;
@@ -240,7 +242,11 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             if (hm != 0u) {
                 L::store_i(k_out, hk);
                 L::store(lo_out, hlo);
-                finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits);
+                // The face normals on the lanes: a child's entry planes are the node's middle or
+                // entry planes by the bits of its slot.
+                L::entry_normal(L::pick(hk, 1, Mx, Ex1), L::pick(hk, 2, My, Ey1), L::pick(hk, 4, Mz, Ez1), L::load(S.ux), L::load(S.uy),
+                                L::load(S.uz), nx, ny, nz);
+                finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits, nx, ny, nz);
                 active &= ~hm;
             }
             R &= ~now;
