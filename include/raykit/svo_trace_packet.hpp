@@ -363,36 +363,45 @@ inline void prefetch_children(const uint32_t* words, const rk_svo_tree& tree, ui
     _mm_prefetch(reinterpret_cast<const char*>(p + (bricks ? 15 : 7)), _MM_HINT_T0);
 }
 
-// Writes the corner, level, handle and rays of mirrored child k of `e` into `ch` (m8: e's child
-// mask in format slots; first: its first child's handle, above the bricks). A corner of a level-L
-// node in [1, 2) has no mantissa bit below 2^-L, so adding the child's half edge 2^-(L+1) is setting
-// bit 22 - L: the same float as e.px + half * bit, on integers. The entry is written as the walk
-// reads it back (16 bytes, then 8: a read that spans several smaller writes waits for them to
-// reach the cache instead of taking them from the store buffer).
-inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w, uint32_t rays)
+// The corner and level of mirrored child k of `e` (an Entry's first 16 bytes) and its handle (m8:
+// e's child mask in format slots; first: its first child's handle, above the bricks). A corner of a
+// level-L node in [1, 2) has no mantissa bit below 2^-L, so adding the child's half edge 2^-(L+1) is
+// setting bit 22 - L: the same float as e.px + half * bit, on integers.
+inline __m128i child_corner(const Entry& e, int k)
 {
     const uint32_t s = 22u - e.level;
+    return _mm_setr_epi32(int(floatBitsToUint(e.px) | ((uint32_t(k) & 1u) << s)), int(floatBitsToUint(e.py) | (((uint32_t(k) >> 1u) & 1u) << s)),
+                          int(floatBitsToUint(e.pz) | (((uint32_t(k) >> 2u) & 1u) << s)), int(e.level + 1u));
+}
+inline uint32_t child_handle(const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w)
+{
     const uint32_t c = uint32_t(k) ^ flip;
-    const __m128i corner = _mm_setr_epi32(int(floatBitsToUint(e.px) | ((uint32_t(k) & 1u) << s)),
-                                          int(floatBitsToUint(e.py) | (((uint32_t(k) >> 1u) & 1u) << s)),
-                                          int(floatBitsToUint(e.pz) | (((uint32_t(k) >> 2u) & 1u) << s)), int(e.level + 1u));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&ch.px), corner);
-    const uint32_t handle = e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
-    const uint64_t hr = uint64_t(handle) | (uint64_t(rays) << 32u);
+    return e.level < w.top ? first + rk_svo_child_rank(m8, c) : c;
+}
+
+// Writes the corner, level, handle and rays of mirrored child k of `e` into `ch`. The walk's pop
+// reads a 24-byte entry as 16 bytes and 8, which is how it is written here (a read that spans
+// several smaller writes waits for them to reach the cache instead of taking them from the store
+// buffer).
+inline void set_child(Entry& ch, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w, uint32_t rays)
+{
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&ch.px), child_corner(e, k));
+    const uint64_t hr = uint64_t(child_handle(e, k, flip, m8, first, w)) | (uint64_t(rays) << 32u);
     std::memcpy(&ch.handle, &hr, sizeof hr);
 }
 
 // Writes mirrored child k of `e` on top of the stack; keeps it when some ray (cm) reaches it (no
-// branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds).
-inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first, const WalkCtx& w,
-                       unsigned cm, unsigned stops)
+// branch per child). `stops`: the rays of cm whose footprint stops them there (LOD builds, whose
+// 32-byte entries the pop reads in one piece and which are written so).
+RK_SVO_PACKET_TARGET inline void push_child(Entry* stack, int& sp, const Entry& e, int k, uint32_t flip, uint32_t m8, uint32_t first,
+                                            const WalkCtx& w, unsigned cm, unsigned stops)
 {
     Entry& ch = stack[sp];
-    set_child(ch, e, k, flip, m8, first, w, cm);
 #if RK_SVO_TRAVERSE_LOD
-    const uint64_t sp_h = uint64_t(stops) | (uint64_t(e.handle) << 32u);
-    std::memcpy(&ch.stops, &sp_h, sizeof sp_h);
+    const __m128i rest = _mm_setr_epi32(int(child_handle(e, k, flip, m8, first, w)), int(cm), int(stops), int(e.handle));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(&ch), _mm256_set_m128i(rest, child_corner(e, k)));
 #else
+    set_child(ch, e, k, flip, m8, first, w, cm);
     (void)stops;
 #endif
     sp += cm != 0u ? 1 : 0;
