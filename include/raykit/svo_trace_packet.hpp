@@ -82,21 +82,20 @@ RK_SVO_PACKET_TARGET inline unsigned setup8(const rk_svo_tree& tree, const SvoRa
 {
     using svo_rays_detail::glm_max;
     using svo_rays_detail::glm_min;
-    alignas(32) float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8], tm[8];
-    for (unsigned i = 0; i < 8; ++i) {
-        const SvoRay& r = *rp[i < n ? i : 0u];
-        ox[i] = r.origin.x;
-        oy[i] = r.origin.y;
-        oz[i] = r.origin.z;
-        dx[i] = r.dir.x;
-        dy[i] = r.dir.y;
-        dz[i] = r.dir.z;
-        tm[i] = i < n ? r.t_max : -1.0f;
-    }
+    // The rays' fields lane by lane, in registers (8 scalar stores read back as one vector would wait
+    // for the stores to reach the cache).
+    const SvoRay* r[8];
+    for (unsigned i = 0; i < 8; ++i) r[i] = rp[i < n ? i : 0u];
+#define RK_SVO_PACKET_LANES_OF(f) _mm256_setr_ps(r[0]->f, r[1]->f, r[2]->f, r[3]->f, r[4]->f, r[5]->f, r[6]->f, r[7]->f)
+    const __m256 OX = RK_SVO_PACKET_LANES_OF(origin.x), OY = RK_SVO_PACKET_LANES_OF(origin.y), OZ = RK_SVO_PACKET_LANES_OF(origin.z);
+    const __m256 Dx = RK_SVO_PACKET_LANES_OF(dir.x), Dy = RK_SVO_PACKET_LANES_OF(dir.y), Dz = RK_SVO_PACKET_LANES_OF(dir.z);
+    // Lanes n..7 get t_max -1 (invalid).
+    const __m256 TM = _mm256_blendv_ps(_mm256_set1_ps(-1.0f), RK_SVO_PACKET_LANES_OF(t_max),
+                                       _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(n)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7))));
+#undef RK_SVO_PACKET_LANES_OF
     const __m256 sgn = _mm256_set1_ps(-0.0f);
     const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f), three = _mm256_set1_ps(3.0f), zero = _mm256_setzero_ps();
     const __m256 fmax = _mm256_set1_ps(RK_FLT_MAX);
-    const __m256 Dx = _mm256_load_ps(dx), Dy = _mm256_load_ps(dy), Dz = _mm256_load_ps(dz), TM = _mm256_load_ps(tm);
     const __m256 m = glm_max(glm_max(_mm256_andnot_ps(sgn, Dx), _mm256_andnot_ps(sgn, Dy)), _mm256_andnot_ps(sgn, Dz));
     __m256 ok = _mm256_and_ps(_mm256_cmp_ps(m, _mm256_set1_ps(RK_FLT_MIN), _CMP_GE_OQ), _mm256_cmp_ps(TM, zero, _CMP_GE_OQ));
     const __m256 nx = _mm256_div_ps(Dx, m), ny = _mm256_div_ps(Dy, m), nz = _mm256_div_ps(Dz, m);
@@ -105,9 +104,9 @@ RK_SVO_PACKET_TARGET inline unsigned setup8(const rk_svo_tree& tree, const SvoRa
     const __m256 rs = _mm256_set1_ps(tree.root_size);
     _mm256_store_ps(S.t_scale + off, glm_min(_mm256_div_ps(_mm256_div_ps(rs, m), len), fmax));
     const __m256 inv_size = _mm256_set1_ps(1.0f / tree.root_size);
-    __m256 Ox = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(ox), _mm256_set1_ps(tree.root_min.x)), inv_size), one);
-    __m256 Oy = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(oy), _mm256_set1_ps(tree.root_min.y)), inv_size), one);
-    __m256 Oz = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(oz), _mm256_set1_ps(tree.root_min.z)), inv_size), one);
+    __m256 Ox = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(OX, _mm256_set1_ps(tree.root_min.x)), inv_size), one);
+    __m256 Oy = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(OY, _mm256_set1_ps(tree.root_min.y)), inv_size), one);
+    __m256 Oz = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(OZ, _mm256_set1_ps(tree.root_min.z)), inv_size), one);
     // Tiny components: +-2^-21 by the sign bit.
     const __m256 eps = _mm256_set1_ps(RK_SVO_TRAVERSE_DIR_EPS);
     ux = _mm256_blendv_ps(ux, _mm256_or_ps(eps, _mm256_and_ps(sgn, ux)), _mm256_cmp_ps(_mm256_andnot_ps(sgn, ux), eps, _CMP_LT_OQ));
