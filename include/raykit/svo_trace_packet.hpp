@@ -6,9 +6,10 @@
 // A C++ twin of rk_svo_trace, not shared text (GLSL has no lanes to program). The set-up is a lanes
 // twin of rk_svo_trace_begin_ (the same float operations in the same order) and the hit is
 // rk_svo_trace_finish_'s shared part (rk_svo_trace_hit_fields_) with the face normal computed on
-// lanes without branches (entry_normal8, L::entry_normal: rk_svo_trace_entry_normal_'s comparisons). Rays of one direction octant share the mirroring, so every node has
-// the same mirrored coordinates for all of them and visiting children in decreasing mirrored slot
-// is front to back for each ray. The packet walks the tree depth first; at a node, each ray's
+// lanes without branches (entry_normal8, L::entry_normal: rk_svo_trace_entry_normal_'s
+// comparisons). Rays of one direction octant share the mirroring, so every node has the same
+// mirrored coordinates for all of them and visiting children in decreasing mirrored slot is front
+// to back for each ray. The packet walks the tree depth first; at a node, each ray's
 // interval in each child is [max(entry planes, t_start), min(exit planes)), with rk_svo_trace's
 // plane expressions. These half-open intervals tile a ray's path, so a ray is answered at the first
 // voxel it reaches, which is rk_svo_trace's.
