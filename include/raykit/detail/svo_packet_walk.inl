@@ -112,39 +112,6 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                 }
                 continue;
             }
-            if (e.level + 1u == w.top && w.b == 2u && w.leaf == tree.depth && (R & (R - 1u)) == 0u) {
-                // One ray in a node whose children are bricks: its children in front-to-back order
-                // on scalars (the walk's plane expressions and order of max and min), each brick it
-                // enters resolved by brick_ray, until one has its voxel; no pushes.
-                const int i = svo_rays_detail::lowest_bit(R);
-                const float size = uintBitsToFloat((127u - e.level) << 23u);
-                const float half = 0.5f * size;
-                const float cx = S.cx[i], cy = S.cy[i], cz = S.cz[i], bx = S.bx[i], by = S.by[i], bz = S.bz[i];
-                const float X0[3] = {e.px * cx - bx, e.py * cy - by, e.pz * cz - bz};
-                const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
-                const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
-                const float t0 = S.t_min[i], th = S.t_hi[i], tl = tl_lane[i];
-                float lo8[8];
-                for (uint32_t rest = mirror_mask(m8, flip) & L::children8(X0, Mi, E1, t0, th, tl, lo8); rest != 0u;) {
-                    const int k = highest_bit(rest);
-                    rest &= ~(1u << k);
-                    if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
-                        bounded = true;
-                        break;
-                    }
-                    ++iter;
-                    Entry br = Entry();
-                    set_child(br, e, k, flip, m8, first, w, R);
-                    uint32_t no_desc;
-                    node_mask(words, tree, br, w, no_desc);  // the brick's masks
-                    if (brick_ray<L>(words, tree, S, br, i, tl, flip, w, iter, hits)) {
-                        active &= ~R;
-                        break;
-                    }
-                }
-                if (bounded) break;
-                continue;
-            }
         }
 #endif
         const uint32_t mm = mirror_mask(m8, flip);
@@ -152,16 +119,44 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
         const float size = uintBitsToFloat((127u - e.level) << 23u);  // 2^-level
         const float half = 0.5f * size;
         if ((R & (R - 1u)) == 0u && e.level + 1u < w.leaf) {
-            // One ray in an inner node: the children it enters, all 8 at once on scalars'
-            // plane distances (the walk's expressions), pushed back to front.
+            // One ray in an inner node: the children it enters, all 8 at once on scalars' plane
+            // distances (the walk's expressions and order of max and min).
             const int i = svo_rays_detail::lowest_bit(R);
             const float cx = S.cx[i], cy = S.cy[i], cz = S.cz[i], bx = S.bx[i], by = S.by[i], bz = S.bz[i];
             const float X0[3] = {e.px * cx - bx, e.py * cy - by, e.pz * cz - bz};
             const float Mi[3] = {(e.px + half) * cx - bx, (e.py + half) * cy - by, (e.pz + half) * cz - bz};
             const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
-            const float t0 = S.t_min[i];
+            const float t0 = S.t_min[i], tl = tl_lane[i];
             float lo8[8];
-            const uint32_t cm = mm & L::children8(X0, Mi, E1, t0, S.t_hi[i], tl_lane[i], lo8);
+            const uint32_t cm = mm & L::children8(X0, Mi, E1, t0, S.t_hi[i], tl, lo8);
+#if !RK_SVO_TRAVERSE_LOD
+            if constexpr (L::kBrickHit) {
+                if (e.level + 1u == w.top && w.b == 2u && w.leaf == tree.depth) {
+                    // Its children are bricks: each one it enters, front to back, resolved by
+                    // brick_ray until one has its voxel; no pushes.
+                    for (uint32_t rest = cm; rest != 0u;) {
+                        const int k = highest_bit(rest);
+                        rest &= ~(1u << k);
+                        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+                            bounded = true;
+                            break;
+                        }
+                        ++iter;
+                        Entry br = Entry();
+                        set_child(br, e, k, flip, m8, first, w, R);
+                        uint32_t no_desc;
+                        node_mask(words, tree, br, w, no_desc);  // the brick's masks
+                        if (brick_ray<L>(words, tree, S, br, i, tl, flip, w, iter, hits)) {
+                            active &= ~R;
+                            break;
+                        }
+                    }
+                    if (bounded) break;
+                    continue;
+                }
+            }
+#endif
+            // Pushed back to front.
 #if RK_SVO_TRAVERSE_LOD
             // The lanes' footprint tests, on this ray's scalars (the same operations).
             const float ea = E1[0] > E1[1] ? E1[0] : E1[1], eb = E1[2] > t0 ? E1[2] : t0;
