@@ -412,8 +412,7 @@ RK_SVO_PACKET_TARGET inline void push_child(Entry* stack, int& sp, const Entry& 
 // child k's entry plane is E1 or Mi and its exit plane Mi or X0 by bit a of k; returns the
 // children whose interval [lo, hi) is not empty (the walk's expressions; t0, th, tl as there)
 // and writes their lo to lo8[k].
-RK_SVO_PACKET_TARGET inline unsigned children8_avx(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
-                                                 float* lo8)
+RK_SVO_PACKET_TARGET inline unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl, float* lo8)
 {
     const __m256 bx = _mm256_castsi256_ps(_mm256_setr_epi32(0, -1, 0, -1, 0, -1, 0, -1));
     const __m256 by = _mm256_castsi256_ps(_mm256_setr_epi32(0, 0, -1, -1, 0, 0, -1, -1));
@@ -483,11 +482,6 @@ struct Lanes8 {
     // expansions there (docs/svo-traverse.md).
     static constexpr bool kBrickHit = false;
     static int brick_hit(const glm::vec3&, float, const glm::vec3&, const glm::vec3&, float, float, float, uint64_t, float&) { return -1; }
-    RK_SVO_PACKET_TARGET static unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
-                                                   float* lo8)
-    {
-        return children8_avx(X0, Mi, E1, t0, th, tl, lo8);
-    }
 };
 
 #define RK_SVO_PW_NAME walk
@@ -598,11 +592,6 @@ struct Lanes16 {
     // ray are disjoint, so that is the walk's two-level answer, without its branches (ties: the
     // highest m, the walk's order).
     static constexpr bool kBrickHit = true;
-    RK_SVO_PACKET16_TARGET static unsigned children8(const float* X0, const float* Mi, const float* E1, float t0, float th, float tl,
-                                                     float* lo8)
-    {
-        return children8_avx(X0, Mi, E1, t0, th, tl, lo8);
-    }
     RK_SVO_PACKET16_TARGET static V perm(__m512i idx, V table) { return _mm512_maskz_permutexvar_ps(static_cast<__mmask16>(0xFFFFu), idx, table); }
     RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,
                                                 float tl, uint64_t occ, float& lo_out)

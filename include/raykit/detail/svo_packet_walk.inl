@@ -28,7 +28,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V T0 = L::blend(lm, L::set1(1.0f), L::load(S.t_min));
     const V TH = L::blend(lm, z, L::load(S.t_hi));
     const V TL = L::blend(lm, z, L::next_up(TH));
-    alignas(64) float tl_lane[L::N];  // TL's lanes, for a ray alone (L::children8, L::brick_hit)
+    alignas(64) float tl_lane[L::N];  // TL's lanes, for a ray alone (children8, L::brick_hit)
     L::store(tl_lane, TL);
 #if RK_SVO_TRAVERSE_LOD
     // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
@@ -128,7 +128,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             const float E1[3] = {(e.px + size) * cx - bx, (e.py + size) * cy - by, (e.pz + size) * cz - bz};
             const float t0 = S.t_min[i], tl = tl_lane[i];
             float lo8[8];
-            const uint32_t cm = mm & L::children8(X0, Mi, E1, t0, S.t_hi[i], tl, lo8);
+            const uint32_t cm = mm & children8(X0, Mi, E1, t0, S.t_hi[i], tl, lo8);
 #if !RK_SVO_TRAVERSE_LOD
             if constexpr (L::kBrickHit) {
                 if (e.level + 1u == w.top && w.b == 2u && w.leaf == tree.depth) {
