@@ -7,9 +7,9 @@
 // over random trees and voxelised meshes at depths 3, 6, 10 and 16 (and coarse max_level stops).
 // Each ray must give rk_svo_trace's hit flag, level and cell, and t within kTol root sizes (plus
 // 8 ULPs of a far origin's distance), and in the same cell the same face normal (the packets compute
-// it on their lanes, a twin of rk_svo_trace_entry_normal_); where it does not, the packet's answer is checked against the
-// float64 brute-force reference (tests/reference/svo_dda_ref.hpp) with the acceptance rule of
-// test_svo_traverse: a hit on an occupied cell the exact ray touches, entered no earlier than the
+// it on their lanes, a twin of rk_svo_trace_entry_normal_); where it does not, the packet's answer
+// is checked against the float64 brute-force reference (tests/reference/svo_dda_ref.hpp) with the
+// acceptance rule of test_svo_traverse: a hit on an occupied cell the exact ray touches, entered no earlier than the
 // first touch and no later than the first solid voxel (within tolerance); a miss only when the exact
 // ray passes through no voxel by more than the tolerance. Counts are printed.
 // The checks live in svo_trace_packet_check.hpp; parts/test_svo_trace_packet/lod.cpp runs them in a

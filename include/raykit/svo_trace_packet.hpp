@@ -171,6 +171,10 @@ struct Entry {
 };
 static_assert(offsetof(Entry, level) == 12u && offsetof(Entry, handle) == 16u && offsetof(Entry, rays) == 20u,
               "set_child writes px..level and handle, rays as two blocks");
+#if RK_SVO_TRAVERSE_LOD
+static_assert(offsetof(Entry, stops) == 24u && offsetof(Entry, phandle) == 28u && sizeof(Entry) == 32u,
+              "push_child writes a LOD entry as one 32-byte block");
+#endif
 
 // Child mask in mirrored slots: bit k = bit (k ^ flip) of m.
 inline uint32_t mirror_mask(uint32_t m, uint32_t flip)

@@ -279,7 +279,8 @@ RK_INLINE bool rk_svo_trace_begin_(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin
 
 /// rk_svo_trace_hit_fields_: internal. The answer for the node the loop stopped at, all but the face
 /// normal (svo_trace_packet.hpp computes that on its lanes): un-mirrored cell, level, distance and
-/// where its attributes are.
+/// where its attributes are. Exact but for t, (t_enter + t_min) * t_scale in two roundings (bounded
+/// by rk_svo_trace's Accuracy line). Cost: ~20 ALU, one word load where the parent has a far pointer.
 RK_INLINE void rk_svo_trace_hit_fields_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_trace_state_ s, RK_INOUT(rk_svo_trace_hit) h)
 {
     uint lvl = uint(23 - s.scale);
