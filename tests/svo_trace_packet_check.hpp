@@ -106,9 +106,9 @@ bool acceptable(const SvoTree& t, uint32_t level, const std::vector<glm::ivec3>&
 void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, const std::vector<SvoRay>& rays,
                   const std::vector<rk_svo_trace_hit>& pk, const std::vector<rk_svo_trace_hit>& one, Tally& total, glm::vec2 cone);
 
-/// Traces `rays` as packets (row-major frame `width` wide in 4x2 and 4x4 tiles, or consecutive
-/// groups of 8 and of 16 when width is 0) and compares every ray with rk_svo_trace. The 16-ray
-/// packets (AVX-512 lanes where the CPU has them, else two 8-ray packets) must give the 8-ray
+/// Traces `rays` as packets (row-major frame `width` wide in 4x2, 4x4 and 8x4 tiles, or consecutive
+/// groups of 8, 16 and 32 when width is 0) and compares every ray with rk_svo_trace. The 16- and
+/// 32-ray packets (AVX-512 lanes where the CPU has them, else 8-ray packets) must give the 8-ray
 /// packets' answers bit for bit.
 void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays, size_t width, Tally& total,
              uint32_t max_level = ~0u, glm::vec2 cone = glm::vec2(0.0f))
@@ -118,25 +118,28 @@ void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays
     std::vector<rk_svo_trace_hit> pk8(rays.size()), pk(rays.size()), one(rays.size());
     for (size_t i = 0; i < rays.size(); ++i)
         one[i] = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
-    for (unsigned lanes : {8u, 16u}) {
+    for (unsigned lanes : {8u, 16u, 32u}) {
         if (width > 0)
-            svo_trace_packets(words.data(), tree, rays.data(), rays.size(), width, pk.data(), 4u, lanes / 4u, cone);
+            svo_trace_packets(words.data(), tree, rays.data(), rays.size(), width, pk.data(), lanes == 32u ? 8u : 4u, lanes == 8u ? 2u : 4u,
+                              cone);
         else
             for (size_t i = 0; i < rays.size(); i += lanes) {
                 const unsigned n = unsigned(std::min<size_t>(lanes, rays.size() - i));
                 if (lanes == 8u)
                     svo_trace_packet8(words.data(), tree, rays.data() + i, pk.data() + i, n, cone);
-                else
+                else if (lanes == 16u)
                     svo_trace_packet16(words.data(), tree, rays.data() + i, pk.data() + i, n, cone);
+                else
+                    svo_trace_packet32(words.data(), tree, rays.data() + i, pk.data() + i, n, cone);
             }
         if (lanes == 8u) {
             pk8 = pk;
         } else {
             long differ = 0;
             for (size_t i = 0; i < rays.size(); ++i) differ += bit_equal(pk[i], pk8[i]) ? 0 : 1;
-            EXPECT_EQ(differ, 0) << what << ": 16-ray packets differ from 8-ray packets";
+            EXPECT_EQ(differ, 0) << what << ": " << lanes << "-ray packets differ from 8-ray packets";
         }
-        const std::string label = std::string(what) + (lanes == 16u ? " x16" : "");
+        const std::string label = std::string(what) + (lanes == 8u ? "" : lanes == 16u ? " x16" : " x32");
         compare_hits(label.c_str(), t, tree, rays, pk, one, total, cone);
     }
 }

@@ -16,6 +16,10 @@
 // RK_SVO_TRAVERSE_LOD=1 build with a footprint cone.
 #include "svo_trace_packet_check.hpp"
 
+#if defined(__SSE__) || defined(_M_X64)
+#include <xmmintrin.h>
+#endif
+
 static_assert(RK_SVO_TRAVERSE_LOD == 0, "the default build");
 
 TEST(SvoTracePacket, RandomTrees)
@@ -122,3 +126,102 @@ TEST(SvoTracePacket, NoNanOnHostileInput)
     compare("hostile input", t, all, 0, total);
     EXPECT_EQ(total.bad, 0);
 }
+
+// Tiles that do not divide the frame, a partial last row, odd and out-of-range tile sizes (a tile
+// whose ray count overflows 32 bits traces 8 rays at a time), and the default tile for a block:
+// every answer is rk_svo_trace's (or an accepted tie), whatever the tile.
+TEST(SvoTracePacket, PartialAndOddTiles)
+{
+    SvoTree t = svotest::pack_cells(7, svotest::random_cells(7, 30000, 17));
+    t.root_min = glm::vec3(-1.0f, 2.0f, 0.5f);
+    t.root_size = 3.0f;
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const std::vector<uint32_t> words = t.gpu_words();
+    const size_t w = 37;
+    std::vector<SvoRay> rays = camera(t, glm::vec3(0.45f, 0.35f, 1.0f), int(w), 13);
+    rays.resize(rays.size() - 11);  // a partial last row
+    std::vector<rk_svo_trace_hit> one(rays.size()), pk(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) one[i] = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+    const unsigned tiles[][2] = {{0u, 0u}, {1u, 1u}, {3u, 5u}, {5u, 6u}, {8u, 4u}, {4u, 8u}, {32u, 1u}, {1u, 32u},
+                                 {33u, 1u}, {6u, 6u}, {0x10000u, 0x10000u}, {0x80000001u, 2u}};
+    Tally total;
+    for (const auto& tw : tiles) {
+        std::fill(pk.begin(), pk.end(), rk_svo_trace_hit{});
+        svo_trace_packets(words.data(), tree, rays.data(), rays.size(), w, pk.data(), tw[0], tw[1]);
+        const std::string label = "tile " + std::to_string(tw[0]) + "x" + std::to_string(tw[1]);
+        compare_hits(label.c_str(), t, tree, rays, pk, one, total, glm::vec2(0.0f));
+    }
+    // Ray counts below a packet's width.
+    for (unsigned n : {1u, 7u, 9u, 17u, 31u}) {
+        std::fill(pk.begin(), pk.end(), rk_svo_trace_hit{});
+        svo_trace_packet32(words.data(), tree, rays.data() + 100, pk.data(), n);
+        for (unsigned i = 0; i < n; ++i) EXPECT_TRUE(bit_equal(pk[i], one[100 + i])) << "svo_trace_packet32 n=" << n << " ray " << i;
+    }
+    EXPECT_EQ(total.bad, 0);
+    EXPECT_GT(total.hits, total.rays / 4);
+}
+
+// svo_trace_packet_best_tile for a block: 8x4 where a pixel spans 2 voxels or more (on AVX-512
+// lanes), the plain default where a voxel is about a pixel or wider, and for degenerate blocks.
+TEST(SvoTracePacket, BestTileForBlock)
+{
+    unsigned bw = 0u, bh = 0u;
+    svo_trace_packet_best_tile(bw, bh);
+    SvoTree t = svotest::pack_cells(10, svotest::random_cells(10, 1000, 3));
+    t.root_size = 1.0f;
+    // 64 pixels over a view 0.9 root sizes wide at 1.6 root sizes: a pixel is about 14 voxels of
+    // depth 10, and 0.9 voxels of depth 6 (max_level 6).
+    const std::vector<SvoRay> rays = camera(t, glm::vec3(0.0f, 0.0f, 1.0f), 64, 8);
+    unsigned tw = 0u, th = 0u;
+    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), rays.data(), rays.size(), 64);
+    EXPECT_EQ(th, bh);
+    EXPECT_EQ(tw, bh == 4u ? 8u : bw);
+    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t, 6u), rays.data(), rays.size(), 64);
+    EXPECT_EQ(tw, bw);
+    EXPECT_EQ(th, bh);
+    SvoRay bad[2];
+    bad[0].dir = glm::vec3(0.0f);
+    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), bad, 2, 2);
+    EXPECT_EQ(tw, bw);
+    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), rays.data(), 1, 64);
+    EXPECT_EQ(tw, bw);
+}
+
+#if defined(__SSE__) || defined(_M_X64)
+// Rays with t_max 0 that start inside solid voxels hit them at t = 0; the packets' closed end of
+// the interval must not be a denormal that denormals-are-zero (MXCSR DAZ, which Embree recommends)
+// reads as 0.
+TEST(SvoTracePacket, ZeroTmaxUnderDenormalsAreZero)
+{
+    std::vector<glm::uvec3> cells;
+    for (uint32_t z = 8; z < 24; ++z)
+        for (uint32_t y = 8; y < 24; ++y)
+            for (uint32_t x = 8; x < 24; ++x) cells.push_back(glm::uvec3(x, y, z));
+    SvoTree t = svotest::pack_cells(5, cells);
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const std::vector<uint32_t> words = t.gpu_words();
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<float> U(0.3f, 0.7f), D(-1.0f, 1.0f);
+    std::vector<SvoRay> rays(640);
+    for (SvoRay& r : rays) {
+        r.origin = t.root_min + t.root_size * glm::vec3(U(rng), U(rng), U(rng));
+        r.dir = glm::vec3(D(rng), D(rng), D(rng)) + glm::vec3(1e-3f);
+        r.t_max = 0.0f;
+    }
+    const unsigned csr = _mm_getcsr();
+    for (unsigned mode : {0u, 0x8040u}) {  // off; DAZ (bit 6) and FTZ (bit 15)
+        _mm_setcsr(csr | mode);
+        std::vector<rk_svo_trace_hit> pk(rays.size());
+        long one_hits = 0, pk_hits[3] = {0, 0, 0};
+        for (size_t i = 0; i < rays.size(); ++i)
+            one_hits += rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f)).hit ? 1 : 0;
+        for (unsigned k = 0; k < 3u; ++k) {
+            svo_trace_packets(words.data(), tree, rays.data(), rays.size(), 32, pk.data(), k == 2u ? 8u : 4u, k == 0u ? 2u : 4u);
+            for (const rk_svo_trace_hit& h : pk) pk_hits[k] += h.hit ? 1 : 0;
+        }
+        _mm_setcsr(csr);
+        EXPECT_EQ(one_hits, long(rays.size())) << "mode " << mode;
+        for (unsigned k = 0; k < 3u; ++k) EXPECT_EQ(pk_hits[k], one_hits) << "mode " << mode << " packet " << k;
+    }
+}
+#endif

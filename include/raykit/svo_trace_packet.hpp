@@ -1,6 +1,7 @@
 // raykit — svo_trace_packet.hpp: rk_svo_trace for coherent packets of up to 8 rays (a 4x2 pixel
-// tile, on the 8 lanes of AVX2 registers) or 16 rays (a 4x4 tile, on AVX-512 lanes) that share ONE
-// traversal of the packed octree, as Embree traces coherent packets. svo_trace_rays
+// tile, on the 8 lanes of AVX2 registers), 16 rays (a 4x4 tile, on AVX-512 lanes) or 32 rays (an
+// 8x4 tile, two AVX-512 registers per lane value) that share ONE traversal of the packed octree, as
+// Embree traces coherent packets. svo_trace_rays
 // (svo_trace_simd.hpp) runs one traversal per lane instead; rk_svo_trace one per call.
 //
 // A C++ twin of rk_svo_trace, not shared text (GLSL has no lanes to program). The set-up is a lanes
@@ -18,17 +19,22 @@
 // except at exact lattice ties (a ray in a face plane, through an edge or corner, or with
 // near-parallel components, where rk_svo_trace's "never backwards" clamp acts): both answers are
 // then accepted by the float64 dense-grid DDA (tests/test_svo_trace_packet.cpp). `iterations` is
-// the number of nodes the packet expanded until that ray was answered, not rk_svo_trace's count.
-// Rays of different octants in one packet are traced as one packet per octant. A packet that
-// expands more than RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. In a
+// the number of nodes the packet expanded until that ray was answered, not rk_svo_trace's count, so
+// where rk_svo_trace stops at RK_SVO_TRAVERSE_MAX_ITER and reports a miss (a lowered bound, or
+// grazing rays in trees deeper than 13) a packet may still find the hit. Bit for bit only without
+// fused multiply-adds: x86-64's default target or -ffp-contract=off (an FMA target such as
+// -march=native contracts rk_svo_trace's planes, not the AVX-512 walk's). Rays of different
+// octants in one packet are traced as one packet per octant. A packet that expands more than
+// RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. In a
 // LOD build (RK_SVO_TRAVERSE_LOD=1) each lane tests rk_svo_trace's footprint stop on the children
 // it enters; a ray stopped at a child is answered when the walk reaches that child (front to back),
 // or at once, at the first child it enters, when its footprint is a child wide at the node's entry.
 // CPUs without AVX2 and POPCNT, trees of 2^31 words or more and max_level 0 use rk_svo_trace per
-// ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones, with the same
-// answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
+// ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones and a 32-ray one
+// as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
-// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth). Where few
+// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); where a
+// pixel spans several voxels, 32-ray packets share the levels above the rays' parting. Where few
 // rays reach a 4^3 brick, the 16-lane walk finds each one's first voxel among the brick's 64 at
 // once (Lanes16::brick_hit, full-detail builds), a ray alone above the bricks takes them in order
 // without the stack, and a node reached by one ray tests its 8 children for it at once (children8,
@@ -57,6 +63,14 @@ namespace svo_packet_detail {
 #endif
 
 #if RK_SVO_PACKET_SIMD
+// Clang contracts a product and a sum written in one scalar expression into a fused multiply-add
+// where the target has FMA (the AVX-512 walk): the planes must round as rk_svo_trace's do. First
+// statement of the functions that compute them (GCC: the walk's optimize attribute, below).
+#if defined(__clang__)
+#define RK_SVO_PACKET_NO_CONTRACT _Pragma("clang fp contract(off)")
+#else
+#define RK_SVO_PACKET_NO_CONTRACT
+#endif
 #if defined(__GNUC__) || defined(__clang__)
 #define RK_SVO_PACKET_TARGET __attribute__((target("avx2,popcnt")))
 inline bool packet_cpu_ok() { return svo_trace_simd_available() && __builtin_cpu_supports("popcnt") != 0; }
@@ -273,6 +287,7 @@ RK_SVO_PACKET_TARGET inline void finish_hits(const uint32_t* words, const rk_svo
                                              uint32_t m8, const WalkCtx& w, uint32_t iter, rk_svo_trace_hit* const* hits,
                                              const float* nx = nullptr, const float* ny = nullptr, const float* nz = nullptr)
 {
+    RK_SVO_PACKET_NO_CONTRACT
     for (unsigned m = hm; m != 0u; m &= m - 1u) {
         const int i = svo_rays_detail::lowest_bit(m);
         const int k = k_out[i];
@@ -348,8 +363,8 @@ RK_SVO_RAYS_FORCE_INLINE bool brick_ray(const uint32_t* words, const rk_svo_tree
     sub.pz = b.pz + 2.0f * q * float((ks >> 2) & 1);
     sub.level = b.level + 1u;
     sub.handle = uint32_t(ks) ^ flip;
-    int32_t k_out[16];
-    float lo_out[16];
+    int32_t k_out[L::N];
+    float lo_out[L::N];
     k_out[i] = m & 7;
     lo_out[i] = lo;
     uint32_t no_desc;
@@ -450,13 +465,15 @@ struct Lanes8 {
     RK_SVO_PACKET_TARGET static V min(V a, V b) { return _mm256_min_ps(a, b); }  // a < b ? a : b
     // hi >= t_hi becomes t_hi_up.
     RK_SVO_PACKET_TARGET static V close_end(V hi, V t_hi, V t_hi_up) { return _mm256_blendv_ps(hi, t_hi_up, _mm256_cmp_ps(hi, t_hi, _CMP_GE_OQ)); }
-    // The next float up (+-0: the smallest denormal).
+    // The next float up; +-0 gives the smallest normal float, not the smallest denormal, so that a
+    // cell entered at 0 by a ray with t_hi 0 passes lo < next_up(t_hi) under denormals-are-zero too
+    // (no plane distance lies in (0, FLT_MIN): the same answers).
     RK_SVO_PACKET_TARGET static V next_up(V x)
     {
         const V z = _mm256_setzero_ps();
         const __m256i up = _mm256_add_epi32(_mm256_castps_si256(x), _mm256_blendv_epi8(_mm256_set1_epi32(-1), _mm256_set1_epi32(1),
                                                                                       _mm256_castps_si256(_mm256_cmp_ps(x, z, _CMP_GT_OQ))));
-        return _mm256_blendv_ps(_mm256_castsi256_ps(up), _mm256_castsi256_ps(_mm256_set1_epi32(1)), _mm256_cmp_ps(x, z, _CMP_EQ_OQ));
+        return _mm256_blendv_ps(_mm256_castsi256_ps(up), _mm256_castsi256_ps(_mm256_set1_epi32(0x00800000)), _mm256_cmp_ps(x, z, _CMP_EQ_OQ));
     }
     RK_SVO_PACKET_TARGET static M mask_of(unsigned m)
     {
@@ -550,7 +567,7 @@ struct Lanes16 {
         const V z = _mm512_setzero_ps();
         const __m512i up = _mm512_add_epi32(_mm512_castps_si512(x), _mm512_mask_blend_epi32(_mm512_cmp_ps_mask(x, z, _CMP_GT_OQ),
                                                                                             _mm512_set1_epi32(-1), _mm512_set1_epi32(1)));
-        return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(x, z, _CMP_EQ_OQ), _mm512_castsi512_ps(up), _mm512_castsi512_ps(_mm512_set1_epi32(1)));
+        return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(x, z, _CMP_EQ_OQ), _mm512_castsi512_ps(up), _mm512_castsi512_ps(_mm512_set1_epi32(0x00800000)));
     }
     static M mask_of(unsigned m) { return static_cast<__mmask16>(m); }
     RK_SVO_PACKET16_TARGET static M lt_and(V a, V b, M m) { return static_cast<__mmask16>(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ) & m); }
@@ -649,6 +666,92 @@ struct Lanes16 {
 #define RK_SVO_PW_LANES Lanes16
 #define RK_SVO_PW_SETUP Setup16
 #include "raykit/detail/svo_packet_walk.inl"
+
+// 32-ray packets (8x4 tiles): the same walk with every lane value in two AVX-512 registers (rays
+// 0-15 and 16-31), Lanes16's operations on each. Where a pixel spans several voxels the rays of a
+// 4x4 tile part a few levels above the bricks, so two 4x4 tiles walk the upper levels twice; one
+// 8x4 packet walks them once (svo_trace_packet_best_tile chooses it there; docs/svo-traverse.md).
+struct alignas(64) Setup32 {
+    float cx[32], cy[32], cz[32], bx[32], by[32], bz[32];
+    float ux[32], uy[32], uz[32];
+    float t_min[32], t_hi[32], t_enter[32], t_scale[32];
+    int32_t flip[32];
+    unsigned valid;
+    float lod_bias, lod_slope;
+};
+
+// Four 8-ray set-ups side by side, written in place (lanes of an absent quarter are invalid).
+inline void setup32(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, Setup32& S)
+{
+    unsigned valid = 0u;
+    for (unsigned q = 0; q < 32u; q += 8u) {
+        const unsigned k = n > q ? (n - q < 8u ? n - q : 8u) : 0u;
+        valid |= setup8(tree, k != 0u ? rp + q : rp, k, S, int(q)) << q;
+    }
+    S.valid = valid;
+}
+
+struct Lanes32 {
+    struct V {
+        __m512 a, b;
+    };
+    using M = unsigned;
+    struct I {
+        __m512i a, b;
+    };
+    using H = Lanes16;
+    static constexpr int N = 32;
+    static __mmask16 lo(M m) { return static_cast<__mmask16>(m & 0xFFFFu); }
+    static __mmask16 hi(M m) { return static_cast<__mmask16>(m >> 16u); }
+    RK_SVO_PACKET16_TARGET static V load(const float* p) { return V{H::load(p), H::load(p + 16)}; }
+    RK_SVO_PACKET16_TARGET static V set1(float x) { return V{H::set1(x), H::set1(x)}; }
+    RK_SVO_PACKET16_TARGET static V zero() { return V{H::zero(), H::zero()}; }
+    RK_SVO_PACKET16_TARGET static I zero_i() { return I{H::zero_i(), H::zero_i()}; }
+    RK_SVO_PACKET16_TARGET static V mul(V x, V y) { return V{H::mul(x.a, y.a), H::mul(x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static V sub(V x, V y) { return V{H::sub(x.a, y.a), H::sub(x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static V add(V x, V y) { return V{H::add(x.a, y.a), H::add(x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static V max(V x, V y) { return V{H::max(x.a, y.a), H::max(x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static V min(V x, V y) { return V{H::min(x.a, y.a), H::min(x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static V close_end(V h, V t, V u) { return V{H::close_end(h.a, t.a, u.a), H::close_end(h.b, t.b, u.b)}; }
+    RK_SVO_PACKET16_TARGET static V next_up(V x) { return V{H::next_up(x.a), H::next_up(x.b)}; }
+    static M mask_of(unsigned m) { return m; }
+    RK_SVO_PACKET16_TARGET static unsigned lt_bits(V x, V y) { return H::lt_bits(x.a, y.a) | (H::lt_bits(x.b, y.b) << 16u); }
+    RK_SVO_PACKET16_TARGET static unsigned le_bits(V x, V y) { return H::le_bits(x.a, y.a) | (H::le_bits(x.b, y.b) << 16u); }
+    RK_SVO_PACKET16_TARGET static M lt_and(V x, V y, M m) { return lt_bits(x, y) & m; }
+    static M and_not(M a, M b) { return b & ~a; }
+    static unsigned bits(M m) { return m; }
+    RK_SVO_PACKET16_TARGET static I blend_k(M m, I x, int k) { return I{H::blend_k(lo(m), x.a, k), H::blend_k(hi(m), x.b, k)}; }
+    RK_SVO_PACKET16_TARGET static V blend(M m, V x, V y) { return V{H::blend(lo(m), x.a, y.a), H::blend(hi(m), x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static void store(float* p, V v)
+    {
+        H::store(p, v.a);
+        H::store(p + 16, v.b);
+    }
+    RK_SVO_PACKET16_TARGET static void store_i(int32_t* p, I v)
+    {
+        H::store_i(p, v.a);
+        H::store_i(p + 16, v.b);
+    }
+    RK_SVO_PACKET16_TARGET static V pick(I k, int bit, V x, V y) { return V{H::pick(k.a, bit, x.a, y.a), H::pick(k.b, bit, x.b, y.b)}; }
+    RK_SVO_PACKET16_TARGET static void entry_normal(V tx, V ty, V tz, V ux, V uy, V uz, float* nx, float* ny, float* nz)
+    {
+        H::entry_normal(tx.a, ty.a, tz.a, ux.a, uy.a, uz.a, nx, ny, nz);
+        H::entry_normal(tx.b, ty.b, tz.b, ux.b, uy.b, uz.b, nx + 16, ny + 16, nz + 16);
+    }
+    // One ray's brick resolution does not depend on the packet's width.
+    static constexpr bool kBrickHit = true;
+    RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,
+                                                float tl, uint64_t occ, float& lo_out)
+    {
+        return H::brick_hit(p, q, c, b, t0, th, tl, occ, lo_out);
+    }
+};
+
+#define RK_SVO_PW_NAME walk32
+#define RK_SVO_PW_TARGET RK_SVO_PACKET16_TARGET
+#define RK_SVO_PW_LANES Lanes32
+#define RK_SVO_PW_SETUP Setup32
+#include "raykit/detail/svo_packet_walk.inl"
 #else
 #define RK_SVO_PACKET16 0
 #endif
@@ -739,7 +842,22 @@ inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
     if (n > 8u) packet8(words, tree, rp + 8, hp + 8, n - 8u, cone);
 }
 
-// packet8 or packet16 (`fn`) on n <= N contiguous rays and answers.
+inline void packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                     unsigned n, glm::vec2 cone)
+{
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
+    if (n > 0u && packet_tree_ok(tree) && packet16_cpu_ok()) {
+        Setup32 S;
+        setup32(tree, rp, n, S);
+        trace_set_up(words, tree, rp, S, n, hp, cone, walk32);
+        return;
+    }
+#endif
+    packet16(words, tree, rp, hp, n < 16u ? n : 16u, cone);
+    if (n > 16u) packet16(words, tree, rp + 16, hp + 16, n - 16u, cone);
+}
+
+// packet8, packet16 or packet32 (`fn`) on n <= N contiguous rays and answers.
 template <unsigned N, class PacketFn>
 inline void packet_contiguous(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits, unsigned n,
                               glm::vec2 cone, PacketFn fn)
@@ -774,8 +892,18 @@ inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, c
     svo_packet_detail::packet_contiguous<16>(words, tree, rays, hits, n < 16u ? n : 16u, cone, svo_packet_detail::packet16);
 }
 
-/// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 4 x 4 where
-/// svo_trace_packet16 runs on AVX-512 lanes, else 4 x 2.
+/// svo_trace_packet32: svo_trace_packet16 for up to 32 rays (an 8x4 pixel tile) sharing one traversal,
+/// each lane value in two AVX-512 registers, where the CPU has AVX-512F (GCC, Clang); elsewhere rays
+/// 0-15 and 16-31 go to svo_trace_packet16. The same answers either way. It pays where a pixel spans
+/// several voxels (svo_trace_packet_best_tile), not where a voxel is about a pixel.
+inline void svo_trace_packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
+                               unsigned n = 32u, glm::vec2 cone = glm::vec2(0.0f))
+{
+    svo_packet_detail::packet_contiguous<32>(words, tree, rays, hits, n < 32u ? n : 32u, cone, svo_packet_detail::packet32);
+}
+
+/// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU where a voxel is
+/// about a pixel or wider: 4 x 4 where svo_trace_packet16 runs on AVX-512 lanes, else 4 x 2.
 inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
 {
     tile_w = 4u;
@@ -785,22 +913,50 @@ inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
 #endif
 }
 
+/// svo_trace_packet_best_tile for a block of rays: svo_trace_packets' default for the row-major block
+/// rays[0, n) `width` wide over `tree`. 8 x 4 (svo_trace_packet32) where the CPU has AVX-512F and a
+/// pixel spans at least 1.75 voxels of the deepest level traced (tree.max_level) in a full-detail
+/// build: there a 4x4 tile's rays part a few levels above the bricks and one 8x4 packet walks the
+/// levels above once for 32 rays (measured 1.05-1.12x where a pixel spans 1.9-15 voxels, 0.95-1.08x
+/// at 1-1.5: docs/svo-traverse.md). Else the tile above. A pixel's width is estimated
+/// from rays 0 and 1 (neighbours in a row): the chord between their unit directions times the
+/// distance from ray 0's origin to the root cube's centre. The choice never changes an answer.
+inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n,
+                                       std::size_t width)
+{
+    svo_trace_packet_best_tile(tile_w, tile_h);
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16 && !RK_SVO_TRAVERSE_LOD
+    if (tile_h != 4u || n < 2u || width < 2u || tree.root_size <= 0.0f || tree.max_level > RK_SVO_MAX_DEPTH) return;
+    const glm::dvec3 d0(rays[0].dir), d1(rays[1].dir);
+    const double l0 = glm::length(d0), l1 = glm::length(d1);
+    if (!(l0 > 0.0 && l1 > 0.0 && l0 < 1e300 && l1 < 1e300)) return;
+    const glm::dvec3 centre = glm::dvec3(tree.root_min) + 0.5 * double(tree.root_size);
+    const double pixel = glm::length(d1 / l1 - d0 / l0) * glm::length(centre - glm::dvec3(rays[0].origin));
+    const double voxel = double(tree.root_size) / double(1ull << tree.max_level);
+    if (pixel >= 1.75 * voxel) tile_w = 8u;  // NaN: no
+#else
+    (void)tree, (void)rays, (void)n, (void)width;
+#endif
+}
+
 /// svo_trace_packets: the rays of a row-major image block `width` rays wide (n = width * rows,
-/// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 16;
-/// 0 x 0, the default: svo_trace_packet_best_tile; more than 8 rays go to svo_trace_packet16; tiles
-/// at the right and bottom edges are partial). hits[i] answers rays[i]; `cone` as svo_trace_packet8.
+/// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 32;
+/// 0 x 0, the default: svo_trace_packet_best_tile for this block; more than 8 rays go to
+/// svo_trace_packet16, more than 16 to svo_trace_packet32; tiles at the right and bottom edges are
+/// partial; a larger tile traces 8 rays at a time in order). hits[i] answers rays[i]; `cone` as
+/// svo_trace_packet8.
 inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
                               rk_svo_trace_hit* hits, unsigned tile_w = 0u, unsigned tile_h = 0u, glm::vec2 cone = glm::vec2(0.0f))
 {
-    if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h);
-    if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w * tile_h > 16u) {
+    if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h, tree, rays, n, width);
+    if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w > 32u || tile_h > 32u || tile_w * tile_h > 32u) {
         for (std::size_t i = 0; i < n; i += 8) svo_trace_packet8(words, tree, rays + i, hits + i, unsigned(n - i < 8 ? n - i : 8), cone);
         return;
     }
-    const bool wide = tile_w * tile_h > 8u;
+    const unsigned lanes = tile_w * tile_h;
     const std::size_t rows = (n + width - 1u) / width;
-    const SvoRay* rp[16];
-    rk_svo_trace_hit* hp[16];
+    const SvoRay* rp[32];
+    rk_svo_trace_hit* hp[32];
     for (std::size_t y0 = 0; y0 < rows; y0 += tile_h)
         for (std::size_t x0 = 0; x0 < width; x0 += tile_w) {
             unsigned k = 0;
@@ -812,7 +968,9 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
                     hp[k++] = hits + i;
                 }
             if (k == 0u) continue;
-            if (wide)
+            if (lanes > 16u)
+                svo_packet_detail::packet32(words, tree, rp, hp, k, cone);
+            else if (lanes > 8u)
                 svo_packet_detail::packet16(words, tree, rp, hp, k, cone);
             else
                 svo_packet_detail::packet8(words, tree, rp, hp, k, cone);

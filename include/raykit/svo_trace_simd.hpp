@@ -7,7 +7,7 @@
 // performs the same float operations in the same order, so its answers are bit for bit those of
 // rk_svo_trace (hit, t, level, cell, normal, node, brick fields, iterations) as long as neither is
 // compiled with floating-point contraction into fused multiply-adds (GCC and Clang contract only
-// with an FMA target such as -march=haswell and without -ffp-contract=off); test_svo_trace_rays
+// with an FMA target such as -march=haswell and without -ffp-contract=off); test_svo_trace_simd
 // checks it on random, adversarial and camera rays at several depths, with and without LOD.
 //
 // The lanes need x86-64 and a CPU with AVX2: with GCC and Clang the code is compiled for AVX2 and
@@ -438,7 +438,7 @@ RK_SVO_RAYS_TARGET inline void trace_lanes(const uint32_t* words, const rk_svo_t
 /// SIMD lanes where the CPU has AVX2 (mode `best`). `words` is the tree as SvoTree::gpu_words();
 /// trees of 2^31 words or more take the per-ray path. Cost: the set-up and hit of each ray as
 /// rk_svo_trace; per loop iteration of 8 lanes ~250 AVX2 instructions (spills included) and up to
-/// 7 gathers: 1.0-1.5x the per-ray speed on 512^2 primary rays at depth 10 (docs/svo-traverse.md).
+/// 7 gathers: 0.9-1.5x the per-ray speed on 512^2 primary rays at depth 10 (docs/svo-traverse.md).
 inline void svo_trace_rays(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n,
                            rk_svo_trace_hit* hits, glm::vec2 cone = glm::vec2(0.0f), SvoTraceMode mode = SvoTraceMode::best)
 {
@@ -448,6 +448,7 @@ inline void svo_trace_rays(const uint32_t* words, const rk_svo_tree& tree, const
         return;
     }
 #endif
+    (void)mode;
     for (std::size_t i = 0; i < n; ++i) hits[i] = rk_svo_trace(words, tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
 }
 

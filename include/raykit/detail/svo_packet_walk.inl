@@ -12,6 +12,7 @@
 RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_svo_tree& tree, const RK_SVO_PW_SETUP& S,
                                                 unsigned lanes, uint32_t flip, rk_svo_trace_hit* const* hits)
 {
+    RK_SVO_PACKET_NO_CONTRACT
     using L = RK_SVO_PW_LANES;
     using V = typename L::V;
     using M = typename L::M;
@@ -20,7 +21,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     // A cell's interval [lo, hi) is closed at the ray's end (rk_svo_trace enters a cell at
     // t <= t_hi, its root exit or t limit): lo <= t_hi <=> lo < next_up(t_hi), the next float up
     // (t_hi may be slightly negative for a ray that only touches the root; +-0 goes to the smallest
-    // denormal), and an exit at or beyond t_hi becomes next_up(t_hi) (L::close_end).
+    // normal float), and an exit at or beyond t_hi becomes next_up(t_hi) (L::close_end).
     const M lm = L::mask_of(lanes);
     const V m1 = L::set1(-1.0f), z = L::zero();
     const V Cx = L::blend(lm, m1, L::load(S.cx)), Cy = L::blend(lm, m1, L::load(S.cy)), Cz = L::blend(lm, m1, L::load(S.cz));
