@@ -26,7 +26,8 @@ TEST(SvoTracePacket, RandomTrees)
 {
     unsigned tw = 0u, th = 0u;
     svo_trace_packet_best_tile(tw, th);
-    std::printf("[packet] 16-ray packets on %s\n", th == 4u ? "AVX-512 lanes" : "two 8-ray packets (no AVX-512F here)");
+    std::printf("[packet] default tile %ux%u; 16- and 32-ray packets on %s\n", tw, th,
+                th == 4u ? "AVX-512 lanes" : "8-ray packets (no AVX-512F here)");
     Tally total;
     for (uint32_t depth : {1u, 2u, 3u, 6u, 10u}) {
         const size_t side3 = size_t(1) << (3 * std::min(depth, 8u));
@@ -159,32 +160,6 @@ TEST(SvoTracePacket, PartialAndOddTiles)
     }
     EXPECT_EQ(total.bad, 0);
     EXPECT_GT(total.hits, total.rays / 4);
-}
-
-// svo_trace_packet_best_tile for a block: 8x4 where a pixel spans 2 voxels or more (on AVX-512
-// lanes), the plain default where a voxel is about a pixel or wider, and for degenerate blocks.
-TEST(SvoTracePacket, BestTileForBlock)
-{
-    unsigned bw = 0u, bh = 0u;
-    svo_trace_packet_best_tile(bw, bh);
-    SvoTree t = svotest::pack_cells(10, svotest::random_cells(10, 1000, 3));
-    t.root_size = 1.0f;
-    // 64 pixels over a view 0.9 root sizes wide at 1.6 root sizes: a pixel is about 14 voxels of
-    // depth 10, and 0.9 voxels of depth 6 (max_level 6).
-    const std::vector<SvoRay> rays = camera(t, glm::vec3(0.0f, 0.0f, 1.0f), 64, 8);
-    unsigned tw = 0u, th = 0u;
-    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), rays.data(), rays.size(), 64);
-    EXPECT_EQ(th, bh);
-    EXPECT_EQ(tw, bh == 4u ? 8u : bw);
-    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t, 6u), rays.data(), rays.size(), 64);
-    EXPECT_EQ(tw, bw);
-    EXPECT_EQ(th, bh);
-    SvoRay bad[2];
-    bad[0].dir = glm::vec3(0.0f);
-    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), bad, 2, 2);
-    EXPECT_EQ(tw, bw);
-    svo_trace_packet_best_tile(tw, th, svo_trace_tree(t), rays.data(), 1, 64);
-    EXPECT_EQ(tw, bw);
 }
 
 #if defined(__SSE__) || defined(_M_X64)

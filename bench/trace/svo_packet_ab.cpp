@@ -9,7 +9,7 @@
 // rk_svo_trace's, rk_svo_trace's loop iterations per entering ray and the packet's node expansions
 // per packet.
 // Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key or "all" (default: all)]
-//        [tile width] [tile height] (default: svo_trace_packet_best_tile for each view)
+//        [tile width] [tile height] (default: svo_trace_packet_best_tile)
 #include <time.h>
 
 #include <algorithm>
@@ -61,7 +61,6 @@ int main(int argc, char** argv)
         }
         const size_t n = rays.size();
         const size_t width = size_t(s.camera.width);
-        if (argc <= 5) raykit::svo_trace_packet_best_tile(tw, th, tree, rays.data(), rays.size(), width);  // per view
         const size_t chunk = 4 * width;
         std::vector<raykit::rk_svo_trace_hit> hits[3];
         for (auto& h : hits) h.resize(n);

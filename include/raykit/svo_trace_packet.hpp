@@ -33,8 +33,9 @@
 // ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones and a 32-ray one
 // as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
-// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); where a
-// pixel spans several voxels, 32-ray packets share the levels above the rays' parting. Where few
+// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); 32-ray
+// packets share the levels above the rays' parting, and expand a node on 16 lanes where its rays
+// lie in one half of the packet. Where few
 // rays reach a 4^3 brick, the 16-lane walk finds each one's first voxel among the brick's 64 at
 // once (Lanes16::brick_hit, full-detail builds), a ray alone above the bricks takes them in order
 // without the stack, and a node reached by one ray tests its 8 children for it at once (children8,
@@ -231,6 +232,16 @@ inline int highest_bit(uint32_t m)
 struct WalkCtx {
     uint32_t b, top, leaf;
     uint32_t brick, bmx, bmy;
+};
+
+// A packet's lane values that every node's expansion reads: its planes' coefficients and biases,
+// t_start, t_hi and next_up(t_hi) (and in a LOD build the footprint's bias, slope and t_enter).
+template <class L>
+struct NodePlanes {
+    typename L::V Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL;
+#if RK_SVO_TRAVERSE_LOD
+    typename L::V LB, LS, TE;
+#endif
 };
 
 inline WalkCtx walk_ctx(const rk_svo_tree& tree)
@@ -506,6 +517,7 @@ struct Lanes8 {
 };
 
 #define RK_SVO_PW_NAME walk
+#define RK_SVO_PW_EXPAND expand8
 #define RK_SVO_PW_TARGET RK_SVO_PACKET_TARGET
 #define RK_SVO_PW_LANES Lanes8
 #define RK_SVO_PW_SETUP Setup
@@ -662,15 +674,16 @@ struct Lanes16 {
 };
 
 #define RK_SVO_PW_NAME walk16
+#define RK_SVO_PW_EXPAND expand16
 #define RK_SVO_PW_TARGET RK_SVO_PACKET16_TARGET
 #define RK_SVO_PW_LANES Lanes16
 #define RK_SVO_PW_SETUP Setup16
 #include "raykit/detail/svo_packet_walk.inl"
 
 // 32-ray packets (8x4 tiles): the same walk with every lane value in two AVX-512 registers (rays
-// 0-15 and 16-31), Lanes16's operations on each. Where a pixel spans several voxels the rays of a
-// 4x4 tile part a few levels above the bricks, so two 4x4 tiles walk the upper levels twice; one
-// 8x4 packet walks them once (svo_trace_packet_best_tile chooses it there; docs/svo-traverse.md).
+// 0-15 and 16-31), Lanes16's operations on each; a node whose rays all lie in one half is expanded
+// on that half alone (RK_SVO_PW_HALVES). Two 4x4 packets walk the levels above their rays' parting
+// twice; one 8x4 packet walks them once.
 struct alignas(64) Setup32 {
     float cx[32], cy[32], cz[32], bx[32], by[32], bz[32];
     float ux[32], uy[32], uz[32];
@@ -748,6 +761,8 @@ struct Lanes32 {
 };
 
 #define RK_SVO_PW_NAME walk32
+#define RK_SVO_PW_EXPAND expand32
+#define RK_SVO_PW_HALVES 1
 #define RK_SVO_PW_TARGET RK_SVO_PACKET16_TARGET
 #define RK_SVO_PW_LANES Lanes32
 #define RK_SVO_PW_SETUP Setup32
@@ -894,61 +909,37 @@ inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, c
 
 /// svo_trace_packet32: svo_trace_packet16 for up to 32 rays (an 8x4 pixel tile) sharing one traversal,
 /// each lane value in two AVX-512 registers, where the CPU has AVX-512F (GCC, Clang); elsewhere rays
-/// 0-15 and 16-31 go to svo_trace_packet16. The same answers either way. It pays where a pixel spans
-/// several voxels (svo_trace_packet_best_tile), not where a voxel is about a pixel.
+/// 0-15 and 16-31 go to svo_trace_packet16. The same answers either way. A node whose rays all lie
+/// in one half is expanded on that half's 16 lanes.
 inline void svo_trace_packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
                                unsigned n = 32u, glm::vec2 cone = glm::vec2(0.0f))
 {
     svo_packet_detail::packet_contiguous<32>(words, tree, rays, hits, n < 32u ? n : 32u, cone, svo_packet_detail::packet32);
 }
 
-/// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU where a voxel is
-/// about a pixel or wider: 4 x 4 where svo_trace_packet16 runs on AVX-512 lanes, else 4 x 2.
+/// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 8 x 4 where
+/// the packets run on AVX-512 lanes (svo_trace_packet32; one packet walks the upper levels once for
+/// 32 rays, and a node whose rays lie in one half of it is expanded on 16 lanes: 1.06-1.18x the 4x4
+/// tiles at depths 8-12, docs/svo-traverse.md), else 4 x 2.
 inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
 {
     tile_w = 4u;
     tile_h = 2u;
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (svo_packet_detail::packet16_cpu_ok()) tile_h = 4u;
-#endif
-}
-
-/// svo_trace_packet_best_tile for a block of rays: svo_trace_packets' default for the row-major block
-/// rays[0, n) `width` wide over `tree`. 8 x 4 (svo_trace_packet32) where the CPU has AVX-512F and a
-/// pixel spans at least 1.75 voxels of the deepest level traced (tree.max_level) in a full-detail
-/// build: there a 4x4 tile's rays part a few levels above the bricks and one 8x4 packet walks the
-/// levels above once for 32 rays (measured 1.05-1.12x where a pixel spans 1.9-15 voxels, 0.95-1.08x
-/// at 1-1.5: docs/svo-traverse.md). Else the tile above. A pixel's width is estimated
-/// from rays 0 and 1 (neighbours in a row): the chord between their unit directions times the
-/// distance from ray 0's origin to the root cube's centre. The choice never changes an answer.
-inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n,
-                                       std::size_t width)
-{
-    svo_trace_packet_best_tile(tile_w, tile_h);
-#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16 && !RK_SVO_TRAVERSE_LOD
-    if (tile_h != 4u || n < 2u || width < 2u || tree.root_size <= 0.0f || tree.max_level > RK_SVO_MAX_DEPTH) return;
-    const glm::dvec3 d0(rays[0].dir), d1(rays[1].dir);
-    const double l0 = glm::length(d0), l1 = glm::length(d1);
-    if (!(l0 > 0.0 && l1 > 0.0 && l0 < 1e300 && l1 < 1e300)) return;
-    const glm::dvec3 centre = glm::dvec3(tree.root_min) + 0.5 * double(tree.root_size);
-    const double pixel = glm::length(d1 / l1 - d0 / l0) * glm::length(centre - glm::dvec3(rays[0].origin));
-    const double voxel = double(tree.root_size) / double(1ull << tree.max_level);
-    if (pixel >= 1.75 * voxel) tile_w = 8u;  // NaN: no
-#else
-    (void)tree, (void)rays, (void)n, (void)width;
+    if (svo_packet_detail::packet16_cpu_ok()) tile_w = 8u, tile_h = 4u;
 #endif
 }
 
 /// svo_trace_packets: the rays of a row-major image block `width` rays wide (n = width * rows,
 /// partial last row allowed), traced in packets of tile_w x tile_h pixels (tile_w * tile_h <= 32;
-/// 0 x 0, the default: svo_trace_packet_best_tile for this block; more than 8 rays go to
+/// 0 x 0, the default: svo_trace_packet_best_tile; more than 8 rays go to
 /// svo_trace_packet16, more than 16 to svo_trace_packet32; tiles at the right and bottom edges are
 /// partial; a larger tile traces 8 rays at a time in order). hits[i] answers rays[i]; `cone` as
 /// svo_trace_packet8.
 inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
                               rk_svo_trace_hit* hits, unsigned tile_w = 0u, unsigned tile_h = 0u, glm::vec2 cone = glm::vec2(0.0f))
 {
-    if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h, tree, rays, n, width);
+    if (tile_w == 0u && tile_h == 0u) svo_trace_packet_best_tile(tile_w, tile_h);
     if (width == 0u || tile_w == 0u || tile_h == 0u || tile_w > 32u || tile_h > 32u || tile_w * tile_h > 32u) {
         for (std::size_t i = 0; i < n; i += 8) svo_trace_packet8(words, tree, rays + i, hits + i, unsigned(n - i < 8 ? n - i : 8), cone);
         return;

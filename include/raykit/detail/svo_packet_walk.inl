@@ -3,8 +3,110 @@
 //   RK_SVO_PW_NAME    the function's name,
 //   RK_SVO_PW_TARGET  its target attribute (the lanes' instruction set),
 //   RK_SVO_PW_LANES   the lane traits (Lanes8: AVX2, Lanes16: AVX-512; see svo_trace_packet.hpp),
-//   RK_SVO_PW_SETUP   the set-up type (Setup, Setup16),
+//   RK_SVO_PW_SETUP   the set-up type (Setup, Setup16, Setup32),
+//   RK_SVO_PW_EXPAND  the name of its node expansion (a function template on the lane traits),
+//   RK_SVO_PW_HALVES  (32 lanes only) expand a node whose rays lie in one half on 16 lanes,
 // defined, and undefines them after. Not a header of its own: no include guard on purpose.
+
+// The expansion of node `e` for its rays R (ray bits; more than one ray, or children at the leaf
+// level) on the lanes of LL, which hold rays sh .. sh + LL::N - 1 (sh 16: the upper half of a
+// 32-ray packet whose rays at this node all lie there; P: the packet's planes on those lanes).
+// Answers the rays that hit among its children; pushes the inner children each ray enters, back
+// to front.
+template <class LL>
+RK_SVO_PW_TARGET RK_SVO_RAYS_FORCE_INLINE void RK_SVO_PW_EXPAND(const uint32_t* words, const rk_svo_tree& tree, const RK_SVO_PW_SETUP& S,
+                                                                const NodePlanes<LL>& P, int sh, const Entry& e, unsigned R, uint32_t mm,
+                                                                uint32_t m8, uint32_t first, uint32_t pdesc, const WalkCtx& w,
+                                                                uint32_t flip, uint32_t iter, rk_svo_trace_hit* const* hits,
+                                                                Entry* stack, int& sp, unsigned& active, int32_t* k_out, float* lo_out,
+                                                                float* nx, float* ny, float* nz)
+{
+    RK_SVO_PACKET_NO_CONTRACT
+    using V = typename LL::V;
+    using M = typename LL::M;
+    using I = typename LL::I;
+    const float size = uintBitsToFloat((127u - e.level) << 23u);  // 2^-level
+    const float half = 0.5f * size;
+    R >>= sh;  // lane bits from here on
+    const V Xx0 = LL::sub(LL::mul(LL::set1(e.px), P.Cx), P.Bx);
+    const V Xy0 = LL::sub(LL::mul(LL::set1(e.py), P.Cy), P.By);
+    const V Xz0 = LL::sub(LL::mul(LL::set1(e.pz), P.Cz), P.Bz);
+    const V Mx = LL::sub(LL::mul(LL::set1(e.px + half), P.Cx), P.Bx);
+    const V My = LL::sub(LL::mul(LL::set1(e.py + half), P.Cy), P.By);
+    const V Mz = LL::sub(LL::mul(LL::set1(e.pz + half), P.Cz), P.Bz);
+    const V Ex1 = LL::sub(LL::mul(LL::set1(e.px + size), P.Cx), P.Bx);
+    const V Ey1 = LL::sub(LL::mul(LL::set1(e.py + size), P.Cy), P.By);
+    const V Ez1 = LL::sub(LL::mul(LL::set1(e.pz + size), P.Cz), P.Bz);
+    // Child slot k (mirrored; bit set = upper half): entry planes E_a = k_a ? entry : middle,
+    // exit planes X_a = k_a ? middle : exit. lo = max(A[k & 3], B[k >> 2]), hi = min(C[k & 3], D[k >> 2]).
+    V A[4], Bk[2], C[4], D[2];
+    A[0] = LL::max(Mx, My);
+    A[1] = LL::max(Ex1, My);
+    A[2] = LL::max(Mx, Ey1);
+    A[3] = LL::max(Ex1, Ey1);
+    Bk[0] = LL::max(Mz, P.T0);
+    Bk[1] = LL::max(Ez1, P.T0);
+    C[0] = LL::min(Xx0, Xy0);
+    C[1] = LL::min(Mx, Xy0);
+    C[2] = LL::min(Xx0, My);
+    C[3] = LL::min(Mx, My);
+    D[0] = LL::min(Xz0, P.TL);
+    D[1] = LL::min(Mz, P.TL);
+    // Rays answered among the children: all of them at the leaf level; in a LOD build also those
+    // whose footprint stops them at every child they enter (at the node's entry, where a child's
+    // entry is at the earliest, it is already a child wide, and it only widens along the ray).
+    unsigned now = e.level + 1u >= w.leaf ? R : 0u;
+#if RK_SVO_TRAVERSE_LOD
+    const V half_v = LL::set1(half);
+    if (now == 0u) {
+        const V entry = LL::max(LL::max(Ex1, Ey1), LL::max(Ez1, P.T0));
+        now = LL::le_bits(half_v, LL::add(P.LB, LL::mul(P.LS, LL::add(P.TE, entry)))) & R;
+    }
+#endif
+    if (now != 0u) {
+        // The first child a ray reaches in front-to-back order is its hit (chosen on the lanes,
+        // no branch per child; then one finish per ray that hit).
+        M left = LL::mask_of(now);
+        I hk = LL::zero_i();
+        V hlo = LL::zero();
+        for (uint32_t rest = mm; rest != 0u;) {
+            const int k = highest_bit(rest);
+            rest &= ~(1u << k);
+            const V lo = LL::max(A[k & 3], Bk[k >> 2]);
+            const V hi = LL::close_end(LL::min(C[k & 3], D[k >> 2]), P.TH, P.TL);
+            const M in = LL::lt_and(lo, hi, left);
+            hk = LL::blend_k(in, hk, k);
+            hlo = LL::blend(in, hlo, lo);
+            left = LL::and_not(in, left);
+        }
+        const unsigned hm = now & ~LL::bits(left);
+        if (hm != 0u) {
+            LL::store_i(k_out + sh, hk);
+            LL::store(lo_out + sh, hlo);
+            // The face normals on the lanes: a child's entry planes are the node's middle or
+            // entry planes by the bits of its slot.
+            LL::entry_normal(LL::pick(hk, 1, Mx, Ex1), LL::pick(hk, 2, My, Ey1), LL::pick(hk, 4, Mz, Ez1), LL::load(S.ux + sh),
+                             LL::load(S.uy + sh), LL::load(S.uz + sh), nx + sh, ny + sh, nz + sh);
+            finish_hits(words, tree, S, hm << sh, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits, nx, ny, nz);
+            active &= ~(hm << sh);
+        }
+        R &= ~now;
+        if (R == 0u) return;
+    }
+    // Inner children: pushed back to front (the first to visit on top).
+    for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
+        const int k = svo_rays_detail::lowest_bit(rest);
+        const V lo = LL::max(A[k & 3], Bk[k >> 2]);
+        const V hi = LL::close_end(LL::min(C[k & 3], D[k >> 2]), P.TH, P.TL);
+        const unsigned cm = LL::lt_bits(lo, hi) & R;
+#if RK_SVO_TRAVERSE_LOD
+        const unsigned stops = LL::le_bits(half_v, LL::add(P.LB, LL::mul(P.LS, LL::add(P.TE, lo)))) & cm;
+#else
+        const unsigned stops = 0u;
+#endif
+        push_child(stack, sp, e, k, flip, m8, first, w, cm << sh, stops << sh);
+    }
+}
 
 // The walk of one packet: `lanes` are rays whose set-up came out of rk_svo_trace_begin_'s twin with
 // one and the same `flip`. Answers *hits[i] for them; returns the lanes still unanswered when the node
@@ -16,7 +118,6 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     using L = RK_SVO_PW_LANES;
     using V = typename L::V;
     using M = typename L::M;
-    using I = typename L::I;
     // Lanes outside `lanes` get planes that no cell interval reaches (and their bits are masked).
     // A cell's interval [lo, hi) is closed at the ray's end (rk_svo_trace enters a cell at
     // t <= t_hi, its root exit or t limit): lo <= t_hi <=> lo < next_up(t_hi), the next float up
@@ -34,6 +135,19 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #if RK_SVO_TRAVERSE_LOD
     // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
     const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
+#endif
+#if RK_SVO_TRAVERSE_LOD
+    const NodePlanes<L> P{Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL, LB, LS, TE};
+#ifdef RK_SVO_PW_HALVES
+    const NodePlanes<Lanes16> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a, LB.a, LS.a, TE.a};
+    const NodePlanes<Lanes16> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b, LB.b, LS.b, TE.b};
+#endif
+#else
+    const NodePlanes<L> P{Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL};
+#ifdef RK_SVO_PW_HALVES
+    const NodePlanes<Lanes16> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a};
+    const NodePlanes<Lanes16> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b};
+#endif
 #endif
 
     WalkCtx w = walk_ctx(tree);
@@ -183,84 +297,21 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #endif
             continue;
         }
-        const V Xx0 = L::sub(L::mul(L::set1(e.px), Cx), Bx);
-        const V Xy0 = L::sub(L::mul(L::set1(e.py), Cy), By);
-        const V Xz0 = L::sub(L::mul(L::set1(e.pz), Cz), Bz);
-        const V Mx = L::sub(L::mul(L::set1(e.px + half), Cx), Bx);
-        const V My = L::sub(L::mul(L::set1(e.py + half), Cy), By);
-        const V Mz = L::sub(L::mul(L::set1(e.pz + half), Cz), Bz);
-        const V Ex1 = L::sub(L::mul(L::set1(e.px + size), Cx), Bx);
-        const V Ey1 = L::sub(L::mul(L::set1(e.py + size), Cy), By);
-        const V Ez1 = L::sub(L::mul(L::set1(e.pz + size), Cz), Bz);
-        // Child slot k (mirrored; bit set = upper half): entry planes E_a = k_a ? entry : middle,
-        // exit planes X_a = k_a ? middle : exit. lo = max(A[k & 3], B[k >> 2]), hi = min(C[k & 3], D[k >> 2]).
-        V A[4], Bk[2], C[4], D[2];
-        A[0] = L::max(Mx, My);
-        A[1] = L::max(Ex1, My);
-        A[2] = L::max(Mx, Ey1);
-        A[3] = L::max(Ex1, Ey1);
-        Bk[0] = L::max(Mz, T0);
-        Bk[1] = L::max(Ez1, T0);
-        C[0] = L::min(Xx0, Xy0);
-        C[1] = L::min(Mx, Xy0);
-        C[2] = L::min(Xx0, My);
-        C[3] = L::min(Mx, My);
-        D[0] = L::min(Xz0, TL);
-        D[1] = L::min(Mz, TL);
-        // Rays answered among the children: all of them at the leaf level; in a LOD build also those
-        // whose footprint stops them at every child they enter (at the node's entry, where a child's
-        // entry is at the earliest, it is already a child wide, and it only widens along the ray).
-        unsigned now = e.level + 1u >= w.leaf ? R : 0u;
-#if RK_SVO_TRAVERSE_LOD
-        const V half_v = L::set1(half);
-        if (now == 0u) {
-            const V entry = L::max(L::max(Ex1, Ey1), L::max(Ez1, T0));
-            now = L::le_bits(half_v, L::add(LB, L::mul(LS, L::add(TE, entry)))) & R;
+        // Several rays (or children at the leaf level): on the lanes, or on the 16 lanes of a
+        // 32-ray packet's half when they all lie in it.
+#ifdef RK_SVO_PW_HALVES
+        if ((R >> 16u) == 0u) {
+            RK_SVO_PW_EXPAND<Lanes16>(words, tree, S, P_lo, 0, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out, lo_out,
+                                      nx, ny, nz);
+            continue;
+        }
+        if ((R & 0xFFFFu) == 0u) {
+            RK_SVO_PW_EXPAND<Lanes16>(words, tree, S, P_hi, 16, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out,
+                                      lo_out, nx, ny, nz);
+            continue;
         }
 #endif
-        if (now != 0u) {
-            // The first child a ray reaches in front-to-back order is its hit (chosen on the lanes,
-            // no branch per child; then one finish per ray that hit).
-            M left = L::mask_of(now);
-            I hk = L::zero_i();
-            V hlo = L::zero();
-            for (uint32_t rest = mm; rest != 0u;) {
-                const int k = highest_bit(rest);
-                rest &= ~(1u << k);
-                const V lo = L::max(A[k & 3], Bk[k >> 2]);
-                const V hi = L::close_end(L::min(C[k & 3], D[k >> 2]), TH, TL);
-                const M in = L::lt_and(lo, hi, left);
-                hk = L::blend_k(in, hk, k);
-                hlo = L::blend(in, hlo, lo);
-                left = L::and_not(in, left);
-            }
-            const unsigned hm = now & ~L::bits(left);
-            if (hm != 0u) {
-                L::store_i(k_out, hk);
-                L::store(lo_out, hlo);
-                // The face normals on the lanes: a child's entry planes are the node's middle or
-                // entry planes by the bits of its slot.
-                L::entry_normal(L::pick(hk, 1, Mx, Ex1), L::pick(hk, 2, My, Ey1), L::pick(hk, 4, Mz, Ez1), L::load(S.ux), L::load(S.uy),
-                                L::load(S.uz), nx, ny, nz);
-                finish_hits(words, tree, S, hm, k_out, lo_out, e, flip, pdesc, m8, w, iter, hits, nx, ny, nz);
-                active &= ~hm;
-            }
-            R &= ~now;
-            if (R == 0u) continue;
-        }
-        // Inner children: pushed back to front (the first to visit on top).
-        for (uint32_t rest = mm; rest != 0u; rest &= rest - 1u) {
-            const int k = svo_rays_detail::lowest_bit(rest);
-            const V lo = L::max(A[k & 3], Bk[k >> 2]);
-            const V hi = L::close_end(L::min(C[k & 3], D[k >> 2]), TH, TL);
-            const unsigned cm = L::lt_bits(lo, hi) & R;
-#if RK_SVO_TRAVERSE_LOD
-            const unsigned stops = L::le_bits(half_v, L::add(LB, L::mul(LS, L::add(TE, lo)))) & cm;
-#else
-            const unsigned stops = 0u;
-#endif
-            push_child(stack, sp, e, k, flip, m8, first, w, cm, stops);
-        }
+        RK_SVO_PW_EXPAND<L>(words, tree, S, P, 0, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out, lo_out, nx, ny, nz);
     }
     return end_walk(active, iter, bounded, hits);
 }
@@ -269,3 +320,5 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #undef RK_SVO_PW_TARGET
 #undef RK_SVO_PW_LANES
 #undef RK_SVO_PW_SETUP
+#undef RK_SVO_PW_EXPAND
+#undef RK_SVO_PW_HALVES
