@@ -28,6 +28,7 @@ constexpr double kTol = 2e-6;
 struct Tally {
     long rays = 0, hits = 0, exact = 0, same_cell = 0, ties = 0, ties_flag = 0, bad = 0;
     long coarse = 0;  // rk_svo_trace hits above the tree's max_level (footprint stops in a LOD build)
+    long exact_hits = 0;  // rk_svo_trace's hits the packets answered bit for bit
     double worst_dt = 0.0;  // worst |t - t_rk| in root sizes among same-cell answers (near origins)
 };
 
@@ -159,6 +160,7 @@ void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, c
         EXPECT_TRUE(std::isfinite(a.t)) << what;
         if (bit_equal(a, b)) {
             ++tl.exact;
+            tl.exact_hits += b.hit ? 1 : 0;
             continue;
         }
         const double dl = glm::length(glm::dvec3(rays[i].dir));
@@ -204,6 +206,7 @@ void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, c
     total.hits += tl.hits;
     total.coarse += tl.coarse;
     total.exact += tl.exact;
+    total.exact_hits += tl.exact_hits;
     total.same_cell += tl.same_cell;
     total.ties += tl.ties;
     total.ties_flag += tl.ties_flag;
@@ -311,6 +314,9 @@ void expect_totals(const char* what, const Tally& total)
                 total.rays, total.hits, total.exact, total.same_cell, total.ties, total.ties_flag, total.bad);
     EXPECT_EQ(total.bad, 0) << what;
     EXPECT_GE(double(total.exact), 0.99 * double(total.rays)) << what;
+    // Misses agree on the flag alone, so the hits are held to the same share on their own.
+    EXPECT_GE(double(total.exact_hits), 0.99 * double(total.hits)) << what << ": " << total.exact_hits << " of " << total.hits
+                                                                   << " hits bit for bit";
     EXPECT_GT(total.hits, total.rays / 10) << what;
 }
 
