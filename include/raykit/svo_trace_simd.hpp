@@ -13,6 +13,8 @@
 // The lanes need x86-64 and a CPU with AVX2: with GCC and Clang the code is compiled for AVX2 and
 // chosen at run time (__builtin_cpu_supports), with MSVC when the translation unit is built with
 // /arch:AVX2. Elsewhere (other CPUs, other compilers) svo_trace_rays calls rk_svo_trace per ray.
+// clang-cl takes the Clang path, whose __builtin_cpu_supports needs LLVM's compiler-rt builtins
+// library at link time on Windows (not linked by default); it is not built or tested here.
 #pragma once
 
 #include <cstddef>
