@@ -80,16 +80,18 @@ inline bool packet_cpu_ok() { return svo_trace_simd_available() && __builtin_cpu
 inline bool packet_cpu_ok() { return svo_trace_simd_available(); }
 #endif
 
-// The set-up of rk_svo_trace_begin_ for 8 rays at once, the same float operations in the same
-// order (so the same bits), one array per field; `valid` has the rays that enter the root.
-struct alignas(32) Setup {
-    float cx[8], cy[8], cz[8], bx[8], by[8], bz[8];
-    float ux[8], uy[8], uz[8];
-    float t_min[8], t_hi[8], t_enter[8], t_scale[8];
-    int32_t flip[8];
+// The set-up of rk_svo_trace_begin_ for N rays (8 at a time, setup8), the same float operations in
+// the same order (so the same bits), one array per field; `valid` has the rays that enter the root.
+template <int N>
+struct alignas(64) SetupLanes {
+    float cx[N], cy[N], cz[N], bx[N], by[N], bz[N];
+    float ux[N], uy[N], uz[N];
+    float t_min[N], t_hi[N], t_enter[N], t_scale[N];
+    int32_t flip[N];
     unsigned valid;
     float lod_bias, lod_slope;  // rk_svo_trace_begin_'s, in a LOD build (set by trace_set_up)
 };
+using Setup = SetupLanes<8>;
 
 // Writes lanes off..off+7 of S (Setup, or a half of Setup16) for the rays rp[0..n) (n <= 8) and
 // returns their `valid` bits (bit i: lane off + i).
@@ -537,21 +539,19 @@ struct Lanes8 {
 #endif
 inline bool packet16_cpu_ok() { return packet_cpu_ok() && __builtin_cpu_supports("avx512f") != 0; }
 
-struct alignas(64) Setup16 {
-    float cx[16], cy[16], cz[16], bx[16], by[16], bz[16];
-    float ux[16], uy[16], uz[16];
-    float t_min[16], t_hi[16], t_enter[16], t_scale[16];
-    int32_t flip[16];
-    unsigned valid;
-    float lod_bias, lod_slope;
-};
+using Setup16 = SetupLanes<16>;
 
-// Two 8-ray set-ups side by side, written in place (lanes of an absent half are invalid).
-inline void setup16(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, Setup16& S)
+// N / 8 set-ups of 8 rays side by side (Setup16, Setup32), written in place (lanes of an absent
+// group of 8 are invalid).
+template <unsigned N, class SetupT>
+inline void setup_wide(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, SetupT& S)
 {
-    const unsigned v0 = setup8(tree, rp, n < 8u ? n : 8u, S, 0);
-    const unsigned v1 = setup8(tree, n > 8u ? rp + 8 : rp, n > 8u ? n - 8u : 0u, S, 8);
-    S.valid = v0 | (v1 << 8u);
+    unsigned valid = 0u;
+    for (unsigned q = 0; q < N; q += 8u) {
+        const unsigned k = n > q ? (n - q < 8u ? n - q : 8u) : 0u;
+        valid |= setup8(tree, k != 0u ? rp + q : rp, k, S, int(q)) << q;
+    }
+    S.valid = valid;
 }
 
 // Lanes8's operations on 16 lanes of AVX-512 registers, masks in mask registers. max and min take
@@ -684,25 +684,7 @@ struct Lanes16 {
 // 0-15 and 16-31), Lanes16's operations on each; a node whose rays all lie in one half is expanded
 // on that half alone (RK_SVO_PW_HALVES). Two 4x4 packets walk the levels above their rays' parting
 // twice; one 8x4 packet walks them once.
-struct alignas(64) Setup32 {
-    float cx[32], cy[32], cz[32], bx[32], by[32], bz[32];
-    float ux[32], uy[32], uz[32];
-    float t_min[32], t_hi[32], t_enter[32], t_scale[32];
-    int32_t flip[32];
-    unsigned valid;
-    float lod_bias, lod_slope;
-};
-
-// Four 8-ray set-ups side by side, written in place (lanes of an absent quarter are invalid).
-inline void setup32(const rk_svo_tree& tree, const SvoRay* const* rp, unsigned n, Setup32& S)
-{
-    unsigned valid = 0u;
-    for (unsigned q = 0; q < 32u; q += 8u) {
-        const unsigned k = n > q ? (n - q < 8u ? n - q : 8u) : 0u;
-        valid |= setup8(tree, k != 0u ? rp + q : rp, k, S, int(q)) << q;
-    }
-    S.valid = valid;
-}
+using Setup32 = SetupLanes<32>;
 
 struct Lanes32 {
     struct V {
@@ -842,34 +824,46 @@ inline void packet8(const uint32_t* words, const rk_svo_tree& tree, const SvoRay
     for (unsigned i = 0; i < n; ++i) *hp[i] = rk_svo_trace(words, tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
 }
 
+#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
+// n <= N rays as one packet of N lanes on AVX-512 (walk_fn: walk16, walk32); false where it does not
+// apply (no rays, a tree the walk does not take, no AVX-512F).
+template <unsigned N, class SetupT, class WalkFn>
+inline bool packet_wide(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                        unsigned n, glm::vec2 cone, WalkFn walk_fn)
+{
+    if (n == 0u || !packet_tree_ok(tree) || !packet16_cpu_ok()) return false;
+    SetupT S;
+    setup_wide<N>(tree, rp, n, S);
+    trace_set_up(words, tree, rp, S, n, hp, cone, walk_fn);
+    return true;
+}
+#endif
+
+// n rays as packets of up to `w` rays by `fn` (packet8, packet16), in order.
+template <class PacketFn>
+inline void packets_of(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                       unsigned n, glm::vec2 cone, unsigned w, PacketFn fn)
+{
+    for (unsigned i = 0; i < n; i += w) fn(words, tree, rp + i, hp + i, n - i < w ? n - i : w, cone);
+}
+
+// Else as two packets of half the width.
 inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
                      unsigned n, glm::vec2 cone)
 {
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (n > 0u && packet_tree_ok(tree) && packet16_cpu_ok()) {
-        Setup16 S;
-        setup16(tree, rp, n, S);
-        trace_set_up(words, tree, rp, S, n, hp, cone, walk16);
-        return;
-    }
+    if (packet_wide<16, Setup16>(words, tree, rp, hp, n, cone, walk16)) return;
 #endif
-    packet8(words, tree, rp, hp, n < 8u ? n : 8u, cone);
-    if (n > 8u) packet8(words, tree, rp + 8, hp + 8, n - 8u, cone);
+    packets_of(words, tree, rp, hp, n, cone, 8u, packet8);
 }
 
 inline void packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
                      unsigned n, glm::vec2 cone)
 {
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (n > 0u && packet_tree_ok(tree) && packet16_cpu_ok()) {
-        Setup32 S;
-        setup32(tree, rp, n, S);
-        trace_set_up(words, tree, rp, S, n, hp, cone, walk32);
-        return;
-    }
+    if (packet_wide<32, Setup32>(words, tree, rp, hp, n, cone, walk32)) return;
 #endif
-    packet16(words, tree, rp, hp, n < 16u ? n : 16u, cone);
-    if (n > 16u) packet16(words, tree, rp + 16, hp + 16, n - 16u, cone);
+    packets_of(words, tree, rp, hp, n, cone, 16u, packet16);
 }
 
 // packet8, packet16 or packet32 (`fn`) on n <= N contiguous rays and answers.
