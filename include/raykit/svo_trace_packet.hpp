@@ -237,13 +237,10 @@ struct WalkCtx {
 };
 
 // A packet's lane values that every node's expansion reads: its planes' coefficients and biases,
-// t_start, t_hi and next_up(t_hi) (and in a LOD build the footprint's bias, slope and t_enter).
+// t_start, t_hi and next_up(t_hi), and the footprint's bias, slope and t_enter (LOD builds).
 template <class L>
 struct NodePlanes {
-    typename L::V Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL;
-#if RK_SVO_TRAVERSE_LOD
-    typename L::V LB, LS, TE;
-#endif
+    typename L::V Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL, LB, LS, TE;
 };
 
 inline WalkCtx walk_ctx(const rk_svo_tree& tree)

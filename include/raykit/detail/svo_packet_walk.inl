@@ -132,22 +132,13 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V TL = L::blend(lm, z, L::next_up(TH));
     alignas(64) float tl_lane[L::N];  // TL's lanes, for a ray alone (children8, L::brick_hit)
     L::store(tl_lane, TL);
-#if RK_SVO_TRAVERSE_LOD
-    // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop).
+    // The footprint lod_bias + lod_slope * (t_enter + t) at a cell entered at t (rk_svo_trace's stop;
+    // read in LOD builds only).
     const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
-#endif
-#if RK_SVO_TRAVERSE_LOD
     const NodePlanes<L> P{Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL, LB, LS, TE};
 #ifdef RK_SVO_PW_HALVES
     const NodePlanes<Lanes16> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a, LB.a, LS.a, TE.a};
     const NodePlanes<Lanes16> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b, LB.b, LS.b, TE.b};
-#endif
-#else
-    const NodePlanes<L> P{Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL};
-#ifdef RK_SVO_PW_HALVES
-    const NodePlanes<Lanes16> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a};
-    const NodePlanes<Lanes16> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b};
-#endif
 #endif
 
     WalkCtx w = walk_ctx(tree);
