@@ -20,8 +20,8 @@
 // near-parallel components, where rk_svo_trace's "never backwards" clamp acts): both answers are
 // then accepted by the float64 dense-grid DDA (tests/test_svo_trace_packet.cpp). `iterations` is
 // the number of nodes the packet expanded until that ray was answered, not rk_svo_trace's count, so
-// where rk_svo_trace stops at RK_SVO_TRAVERSE_MAX_ITER and reports a miss (a lowered bound, or
-// grazing rays in trees deeper than 13) a packet may still find the hit. Bit for bit only without
+// where rk_svo_trace stops at RK_SVO_TRAVERSE_MAX_ITER and reports a miss (a lowered bound, or a
+// very long grazing path through a deep tree) a packet may still find the hit. Bit for bit only without
 // fused multiply-adds: x86-64's default target or -ffp-contract=off (an FMA target such as
 // -march=native contracts rk_svo_trace's planes, not the AVX-512 walk's). Rays of different
 // octants in one packet are traced as one packet per octant. A packet that expands more than
@@ -31,7 +31,8 @@
 // or at once, at the first child it enters, when its footprint is a child wide at the node's entry.
 // CPUs without AVX2 and POPCNT, trees of 2^31 words or more and max_level 0 use rk_svo_trace per
 // ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones and a 32-ray one
-// as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not compiled yet.
+// as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not
+// compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
 // not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); 32-ray
 // packets share the levels above the rays' parting, and expand a node on 16 lanes where its rays
