@@ -107,10 +107,34 @@ bool acceptable(const SvoTree& t, uint32_t level, const std::vector<glm::ivec3>&
 void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, const std::vector<SvoRay>& rays,
                   const std::vector<rk_svo_trace_hit>& pk, const std::vector<rk_svo_trace_hit>& one, Tally& total, glm::vec2 cone);
 
+/// `rays` as 16-ray packets on AVX2 registers (svo_packet_detail::packet16_avx2, whatever the CPU
+/// has beyond AVX2): 4x4 tiles of a frame `width` wide, or consecutive groups of 16 when width is 0.
+/// Without AVX2 (or a tree the packets do not take) rk_svo_trace answers.
+void trace_avx2_16(const std::vector<uint32_t>& words, const rk_svo_tree& tree, const std::vector<SvoRay>& rays, size_t width,
+                   std::vector<rk_svo_trace_hit>& out, glm::vec2 cone)
+{
+    const size_t n = rays.size(), w = width > 0 ? width : 16u, tw = width > 0 ? 4u : 16u, th = width > 0 ? 4u : 1u;
+    const size_t rows = (n + w - 1u) / w;
+    for (size_t y0 = 0; y0 < rows; y0 += th)
+        for (size_t x0 = 0; x0 < w; x0 += tw) {
+            const SvoRay* rp[16];
+            rk_svo_trace_hit* hp[16];
+            unsigned k = 0;
+            for (size_t y = y0; y < y0 + th && y < rows; ++y)
+                for (size_t x = x0; x < x0 + tw && x < w && y * w + x < n; ++x) {
+                    rp[k] = &rays[y * w + x];
+                    hp[k++] = &out[y * w + x];
+                }
+            if (k != 0u && !svo_packet_detail::packet16_avx2(words.data(), tree, rp, hp, k, cone))
+                for (unsigned i = 0; i < k; ++i) *hp[i] = rk_svo_trace(words.data(), tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
+        }
+}
+
 /// Traces `rays` as packets (row-major frame `width` wide in 4x2, 4x4 and 8x4 tiles, or consecutive
 /// groups of 8, 16 and 32 when width is 0) and compares every ray with rk_svo_trace. The 16- and
-/// 32-ray packets (AVX-512 lanes where the CPU has them, else 8-ray packets) must give the 8-ray
-/// packets' answers bit for bit.
+/// 32-ray packets (AVX-512 lanes where the CPU has them, else two AVX2 registers per value), and the
+/// 16-ray packets on AVX2 registers whatever the CPU has, must give the 8-ray packets' answers bit
+/// for bit.
 void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays, size_t width, Tally& total,
              uint32_t max_level = ~0u, glm::vec2 cone = glm::vec2(0.0f))
 {
@@ -119,8 +143,10 @@ void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays
     std::vector<rk_svo_trace_hit> pk8(rays.size()), pk(rays.size()), one(rays.size());
     for (size_t i = 0; i < rays.size(); ++i)
         one[i] = rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, cone);
-    for (unsigned lanes : {8u, 16u, 32u}) {
-        if (width > 0)
+    for (unsigned lanes : {8u, 16u, 32u, 17u}) {  // 17: 16 rays on AVX2 registers (packet16_avx2)
+        if (lanes == 17u)
+            trace_avx2_16(words, tree, rays, width, pk, cone);
+        else if (width > 0)
             svo_trace_packets(words.data(), tree, rays.data(), rays.size(), width, pk.data(), lanes == 32u ? 8u : 4u, lanes == 8u ? 2u : 4u,
                               cone);
         else
@@ -138,9 +164,10 @@ void compare(const char* what, const SvoTree& t, const std::vector<SvoRay>& rays
         } else {
             long differ = 0;
             for (size_t i = 0; i < rays.size(); ++i) differ += bit_equal(pk[i], pk8[i]) ? 0 : 1;
-            EXPECT_EQ(differ, 0) << what << ": " << lanes << "-ray packets differ from 8-ray packets";
+            EXPECT_EQ(differ, 0) << what << ": " << (lanes == 17u ? std::string("16-ray (AVX2)") : std::to_string(lanes) + "-ray")
+                                 << " packets differ from 8-ray packets";
         }
-        const std::string label = std::string(what) + (lanes == 8u ? "" : lanes == 16u ? " x16" : " x32");
+        const std::string label = std::string(what) + (lanes == 8u ? "" : lanes == 16u ? " x16" : lanes == 32u ? " x32" : " x16 AVX2");
         compare_hits(label.c_str(), t, tree, rays, pk, one, total, cone);
     }
 }

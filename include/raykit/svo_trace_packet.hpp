@@ -1,7 +1,7 @@
 // raykit — svo_trace_packet.hpp: rk_svo_trace for coherent packets of up to 8 rays (a 4x2 pixel
-// tile, on the 8 lanes of AVX2 registers), 16 rays (a 4x4 tile, on AVX-512 lanes) or 32 rays (an
-// 8x4 tile, two AVX-512 registers per lane value) that share ONE traversal of the packed octree, as
-// Embree traces coherent packets. svo_trace_rays
+// tile, on the 8 lanes of AVX2 registers), 16 rays (a 4x4 tile, on AVX-512 lanes or two AVX2
+// registers per lane value) or 32 rays (an 8x4 tile, two AVX-512 registers per lane value) that
+// share ONE traversal of the packed octree, as Embree traces coherent packets. svo_trace_rays
 // (svo_trace_simd.hpp) runs one traversal per lane instead; rk_svo_trace one per call.
 //
 // A C++ twin of rk_svo_trace, not shared text (GLSL has no lanes to program). The set-up is a lanes
@@ -30,9 +30,9 @@
 // it enters; a ray stopped at a child is answered when the walk reaches that child (front to back),
 // or at once, at the first child it enters, when its footprint is a child wide at the node's entry.
 // CPUs without AVX2 and POPCNT, trees of 2^31 words or more and max_level 0 use rk_svo_trace per
-// ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet as two 8-ray ones and a 32-ray one
-// as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but not
-// compiled yet.
+// ray; CPUs without AVX-512F (and MSVC) trace a 16-ray packet on two AVX2 registers per value and
+// a 32-ray one as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but
+// not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
 // not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); 32-ray
 // packets share the levels above the rays' parting, and expand a node on 16 lanes where its rays
@@ -523,9 +523,24 @@ struct Lanes8 {
 #define RK_SVO_PW_SETUP Setup
 #include "raykit/detail/svo_packet_walk.inl"
 
+// 16-ray packets (4x4 tiles) on AVX2 where the CPU has no AVX-512F: two 8-lane registers per lane
+// value (rays 0-7 and 8-15), a node whose rays lie in one half expanded on that half's lanes
+// alone (RK_SVO_PW_HALVES): 1.06-1.27x two 4x2 packets (docs/svo-traverse.md).
+#define RK_SVO_LP_NAME Lanes8x2
+#define RK_SVO_LP_HALF Lanes8
+#define RK_SVO_LP_TARGET RK_SVO_PACKET_TARGET
+#include "raykit/detail/svo_packet_pair.inl"
+
+#define RK_SVO_PW_NAME walk8x2
+#define RK_SVO_PW_EXPAND expand8x2
+#define RK_SVO_PW_HALVES 1
+#define RK_SVO_PW_TARGET RK_SVO_PACKET_TARGET
+#define RK_SVO_PW_LANES Lanes8x2
+#define RK_SVO_PW_SETUP SetupLanes<16>
+#include "raykit/detail/svo_packet_walk.inl"
+
 // 16-ray packets (4x4 tiles) on AVX-512 lanes, GCC and Clang: the same walk on one 16-lane register
-// (the same expressions per lane, so the same answers). Two 8-lane AVX2 halves were measured no
-// faster than 4x2 packets (register pressure); one 16-lane register is (docs/svo-traverse.md).
+// (the same expressions per lane, so the same answers).
 #if defined(__GNUC__) || defined(__clang__)
 #define RK_SVO_PACKET16 1
 #if defined(__clang__)
@@ -684,61 +699,10 @@ struct Lanes16 {
 // twice; one 8x4 packet walks them once.
 using Setup32 = SetupLanes<32>;
 
-struct Lanes32 {
-    struct V {
-        __m512 a, b;
-    };
-    using M = unsigned;
-    struct I {
-        __m512i a, b;
-    };
-    using H = Lanes16;
-    static constexpr int N = 32;
-    static __mmask16 lo(M m) { return static_cast<__mmask16>(m & 0xFFFFu); }
-    static __mmask16 hi(M m) { return static_cast<__mmask16>(m >> 16u); }
-    RK_SVO_PACKET16_TARGET static V load(const float* p) { return V{H::load(p), H::load(p + 16)}; }
-    RK_SVO_PACKET16_TARGET static V set1(float x) { return V{H::set1(x), H::set1(x)}; }
-    RK_SVO_PACKET16_TARGET static V zero() { return V{H::zero(), H::zero()}; }
-    RK_SVO_PACKET16_TARGET static I zero_i() { return I{H::zero_i(), H::zero_i()}; }
-    RK_SVO_PACKET16_TARGET static V mul(V x, V y) { return V{H::mul(x.a, y.a), H::mul(x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static V sub(V x, V y) { return V{H::sub(x.a, y.a), H::sub(x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static V add(V x, V y) { return V{H::add(x.a, y.a), H::add(x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static V max(V x, V y) { return V{H::max(x.a, y.a), H::max(x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static V min(V x, V y) { return V{H::min(x.a, y.a), H::min(x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static V close_end(V h, V t, V u) { return V{H::close_end(h.a, t.a, u.a), H::close_end(h.b, t.b, u.b)}; }
-    RK_SVO_PACKET16_TARGET static V next_up(V x) { return V{H::next_up(x.a), H::next_up(x.b)}; }
-    static M mask_of(unsigned m) { return m; }
-    RK_SVO_PACKET16_TARGET static unsigned lt_bits(V x, V y) { return H::lt_bits(x.a, y.a) | (H::lt_bits(x.b, y.b) << 16u); }
-    RK_SVO_PACKET16_TARGET static unsigned le_bits(V x, V y) { return H::le_bits(x.a, y.a) | (H::le_bits(x.b, y.b) << 16u); }
-    RK_SVO_PACKET16_TARGET static M lt_and(V x, V y, M m) { return lt_bits(x, y) & m; }
-    static M and_not(M a, M b) { return b & ~a; }
-    static unsigned bits(M m) { return m; }
-    RK_SVO_PACKET16_TARGET static I blend_k(M m, I x, int k) { return I{H::blend_k(lo(m), x.a, k), H::blend_k(hi(m), x.b, k)}; }
-    RK_SVO_PACKET16_TARGET static V blend(M m, V x, V y) { return V{H::blend(lo(m), x.a, y.a), H::blend(hi(m), x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static void store(float* p, V v)
-    {
-        H::store(p, v.a);
-        H::store(p + 16, v.b);
-    }
-    RK_SVO_PACKET16_TARGET static void store_i(int32_t* p, I v)
-    {
-        H::store_i(p, v.a);
-        H::store_i(p + 16, v.b);
-    }
-    RK_SVO_PACKET16_TARGET static V pick(I k, int bit, V x, V y) { return V{H::pick(k.a, bit, x.a, y.a), H::pick(k.b, bit, x.b, y.b)}; }
-    RK_SVO_PACKET16_TARGET static void entry_normal(V tx, V ty, V tz, V ux, V uy, V uz, float* nx, float* ny, float* nz)
-    {
-        H::entry_normal(tx.a, ty.a, tz.a, ux.a, uy.a, uz.a, nx, ny, nz);
-        H::entry_normal(tx.b, ty.b, tz.b, ux.b, uy.b, uz.b, nx + 16, ny + 16, nz + 16);
-    }
-    // One ray's brick resolution does not depend on the packet's width.
-    static constexpr bool kBrickHit = true;
-    RK_SVO_PACKET16_TARGET static int brick_hit(const glm::vec3& p, float q, const glm::vec3& c, const glm::vec3& b, float t0, float th,
-                                                float tl, uint64_t occ, float& lo_out)
-    {
-        return H::brick_hit(p, q, c, b, t0, th, tl, occ, lo_out);
-    }
-};
+#define RK_SVO_LP_NAME Lanes32
+#define RK_SVO_LP_HALF Lanes16
+#define RK_SVO_LP_TARGET RK_SVO_PACKET16_TARGET
+#include "raykit/detail/svo_packet_pair.inl"
 
 #define RK_SVO_PW_NAME walk32
 #define RK_SVO_PW_EXPAND expand32
@@ -822,20 +786,34 @@ inline void packet8(const uint32_t* words, const rk_svo_tree& tree, const SvoRay
     for (unsigned i = 0; i < n; ++i) *hp[i] = rk_svo_trace(words, tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
 }
 
-#if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-// n <= N rays as one packet of N lanes on AVX-512 (walk_fn: walk16, walk32); false where it does not
-// apply (no rays, a tree the walk does not take, no AVX-512F).
+#if RK_SVO_PACKET_SIMD
+// n <= N rays as one packet of N lanes (walk_fn: walk8x2 on AVX2, walk16 or walk32 on AVX-512; ok:
+// the CPU has its instructions); false where it does not apply (no rays, a tree the walk does not
+// take, a CPU without them).
 template <unsigned N, class SetupT, class WalkFn>
-inline bool packet_wide(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+inline bool packet_wide(bool ok, const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
                         unsigned n, glm::vec2 cone, WalkFn walk_fn)
 {
-    if (n == 0u || !packet_tree_ok(tree) || !packet16_cpu_ok()) return false;
+    if (!ok || n == 0u || !packet_tree_ok(tree)) return false;
     SetupT S;
     setup_wide<N>(tree, rp, n, S);
     trace_set_up(words, tree, rp, S, n, hp, cone, walk_fn);
     return true;
 }
 #endif
+
+// n <= 16 rays as one packet on AVX2 lanes, two 8-lane registers per value (where the CPU has no
+// AVX-512F; tests call it directly); false where it does not apply.
+inline bool packet16_avx2(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* const* rp, rk_svo_trace_hit* const* hp,
+                          unsigned n, glm::vec2 cone)
+{
+#if RK_SVO_PACKET_SIMD
+    return packet_wide<16, SetupLanes<16>>(packet_cpu_ok(), words, tree, rp, hp, n, cone, walk8x2);
+#else
+    (void)words, (void)tree, (void)rp, (void)hp, (void)n, (void)cone;
+    return false;
+#endif
+}
 
 // n rays as packets of up to `w` rays by `fn` (packet8, packet16), in order.
 template <class PacketFn>
@@ -850,8 +828,9 @@ inline void packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
                      unsigned n, glm::vec2 cone)
 {
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (packet_wide<16, Setup16>(words, tree, rp, hp, n, cone, walk16)) return;
+    if (packet_wide<16, Setup16>(packet16_cpu_ok(), words, tree, rp, hp, n, cone, walk16)) return;
 #endif
+    if (packet16_avx2(words, tree, rp, hp, n, cone)) return;
     packets_of(words, tree, rp, hp, n, cone, 8u, packet8);
 }
 
@@ -859,7 +838,7 @@ inline void packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
                      unsigned n, glm::vec2 cone)
 {
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (packet_wide<32, Setup32>(words, tree, rp, hp, n, cone, walk32)) return;
+    if (packet_wide<32, Setup32>(packet16_cpu_ok(), words, tree, rp, hp, n, cone, walk32)) return;
 #endif
     packets_of(words, tree, rp, hp, n, cone, 16u, packet16);
 }
@@ -890,9 +869,10 @@ inline void svo_trace_packet8(const uint32_t* words, const rk_svo_tree& tree, co
 }
 
 /// svo_trace_packet16: svo_trace_packet8 for up to 16 rays (a 4x4 pixel tile) sharing one traversal
-/// on AVX-512 lanes, where the CPU has AVX-512F (GCC, Clang); elsewhere rays 0-7 and 8-15 go to
-/// svo_trace_packet8. The same answers either way (the same expressions per lane). Where the rays
-/// are coherent a 4x4 packet shares more nodes than two 4x2 ones (docs/svo-traverse.md).
+/// on AVX-512 lanes, where the CPU has AVX-512F (GCC, Clang), else on two 8-lane AVX2 registers per
+/// value; without AVX2, rays 0-7 and 8-15 go to svo_trace_packet8. The same answers either way (the
+/// same expressions per lane). Where the rays are coherent a 4x4 packet shares more nodes than two
+/// 4x2 ones (docs/svo-traverse.md).
 inline void svo_trace_packet16(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits,
                                unsigned n = 16u, glm::vec2 cone = glm::vec2(0.0f))
 {
@@ -912,13 +892,14 @@ inline void svo_trace_packet32(const uint32_t* words, const rk_svo_tree& tree, c
 /// svo_trace_packet_best_tile: the tile svo_trace_packets uses by default on this CPU: 8 x 4 where
 /// the packets run on AVX-512 lanes (svo_trace_packet32; one packet walks the upper levels once for
 /// 32 rays, and a node whose rays lie in one half of it is expanded on 16 lanes: 1.06-1.18x the 4x4
-/// tiles at depths 8-12, docs/svo-traverse.md), else 4 x 2.
+/// tiles at depths 8-12), else 4 x 4 (svo_trace_packet16 on two 8-lane AVX2 registers per value:
+/// 1.06-1.27x the 4x2 tiles; docs/svo-traverse.md).
 inline void svo_trace_packet_best_tile(unsigned& tile_w, unsigned& tile_h)
 {
     tile_w = 4u;
-    tile_h = 2u;
+    tile_h = 4u;
 #if RK_SVO_PACKET_SIMD && RK_SVO_PACKET16
-    if (svo_packet_detail::packet16_cpu_ok()) tile_w = 8u, tile_h = 4u;
+    if (svo_packet_detail::packet16_cpu_ok()) tile_w = 8u;
 #endif
 }
 

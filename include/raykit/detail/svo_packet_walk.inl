@@ -5,7 +5,8 @@
 //   RK_SVO_PW_LANES   the lane traits (Lanes8: AVX2, Lanes16: AVX-512; see svo_trace_packet.hpp),
 //   RK_SVO_PW_SETUP   the set-up type (Setup, Setup16, Setup32),
 //   RK_SVO_PW_EXPAND  the name of its node expansion (a function template on the lane traits),
-//   RK_SVO_PW_HALVES  (32 lanes only) expand a node whose rays lie in one half on 16 lanes,
+//   RK_SVO_PW_HALVES  (lane pairs only, svo_packet_pair.inl) expand a node whose rays lie in one
+//                     half on that half's lanes,
 // defined, and undefines them after. Not a header of its own: no include guard on purpose.
 
 // The expansion of node `e` for its rays R (ray bits; more than one ray, or children at the leaf
@@ -137,8 +138,9 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     const V LB = L::set1(S.lod_bias), LS = L::set1(S.lod_slope), TE = L::load(S.t_enter);
     const NodePlanes<L> P{Cx, Cy, Cz, Bx, By, Bz, T0, TH, TL, LB, LS, TE};
 #ifdef RK_SVO_PW_HALVES
-    const NodePlanes<Lanes16> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a, LB.a, LS.a, TE.a};
-    const NodePlanes<Lanes16> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b, LB.b, LS.b, TE.b};
+    using HL = typename L::H;
+    const NodePlanes<HL> P_lo{Cx.a, Cy.a, Cz.a, Bx.a, By.a, Bz.a, T0.a, TH.a, TL.a, LB.a, LS.a, TE.a};
+    const NodePlanes<HL> P_hi{Cx.b, Cy.b, Cz.b, Bx.b, By.b, Bz.b, T0.b, TH.b, TL.b, LB.b, LS.b, TE.b};
 #endif
 
     WalkCtx w = walk_ctx(tree);
@@ -288,16 +290,16 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
 #endif
             continue;
         }
-        // Several rays (or children at the leaf level): on the lanes, or on the 16 lanes of a
-        // 32-ray packet's half when they all lie in it.
+        // Several rays (or children at the leaf level): on the lanes, or on one half's lanes when
+        // they all lie in it (RK_SVO_PW_HALVES).
 #ifdef RK_SVO_PW_HALVES
-        if ((R >> 16u) == 0u) {
-            RK_SVO_PW_EXPAND<Lanes16>(words, tree, S, P_lo, 0, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out, lo_out,
+        if ((R >> HL::N) == 0u) {
+            RK_SVO_PW_EXPAND<HL>(words, tree, S, P_lo, 0, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out, lo_out,
                                       nx, ny, nz);
             continue;
         }
-        if ((R & 0xFFFFu) == 0u) {
-            RK_SVO_PW_EXPAND<Lanes16>(words, tree, S, P_hi, 16, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out,
+        if ((R & L::kHalf) == 0u) {
+            RK_SVO_PW_EXPAND<HL>(words, tree, S, P_hi, HL::N, e, R, mm, m8, first, pdesc, w, flip, iter, hits, stack, sp, active, k_out,
                                       lo_out, nx, ny, nz);
             continue;
         }
