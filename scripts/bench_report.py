@@ -1120,7 +1120,7 @@ def svo_trace_summary(out_dir):
     scripts/bench_trace_report.py) and the driver frame-time page (benchmarks_svo_gl.md)."""
     md = ["## Octree ray casting: CPU throughput against Embree and OpenVDB, frame time on the driver", ""]
     md.append("`rk_svo_trace` (the C++ build of `svo_traverse.glsl`), `svo_trace_rays` (its loop on 8 AVX2 "
-              "lanes, the same answers bit for bit) and `svo_trace_packets` (pixel tiles sharing one traversal: 8x4 on AVX-512, else 4x2) against Embree on the source triangles and "
+              "lanes, the same answers bit for bit) and `svo_trace_packets` (pixel tiles sharing one traversal: 8x4 on AVX-512, else 4x4 on AVX2) against Embree on the source triangles and "
               "OpenVDB's level-set ray intersector, 512x512 primary rays, single thread "
               "([benchmarks_trace.md](benchmarks_trace.md), `bash scripts/bench_trace.sh`; every depth 8-12, "
               "2 threads, build times, hit agreement). Issue 11's goals: at least 5x OpenVDB and at least "

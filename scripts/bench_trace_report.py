@@ -80,7 +80,7 @@ def main():
         "each call traces one chunk of 4 rows (2,048 rays), copying them in and the distances out.\n"
         "- **raykit packets**: `svo_trace_packets` (`raykit/svo_trace_packet.hpp`) on the same tree and rays: "
         "its default tiles, 8x4 pixels of 32 rays sharing one traversal on AVX-512 lanes (two registers per value) where the CPU has AVX-512F, "
-        "else 4x2 tiles of 8 rays on AVX2 lanes (" + avx512_note() + "), answers rk_svo_trace's except at exact "
+        "else 4x4 tiles of 16 rays on two AVX2 registers per value (" + avx512_note() + "), answers rk_svo_trace's except at exact "
         "lattice ties (test_svo_trace_packet); the same chunks.\n"
         "- **raykit packets, 1-px LOD**: the same packets in a `RK_SVO_TRAVERSE_LOD=1` build, each ray "
         "stopping at the first non-empty node no wider than one pixel of the camera (`rk_svo_pixel_cone`, "

@@ -1,5 +1,5 @@
 // raykit_svo_packet_ab: svo_trace_packets (raykit/svo_trace_packet.hpp; pixel tiles of coherent
-// rays sharing one traversal: 4 x 4 on AVX-512 lanes where the CPU has them, else 4 x 2 on AVX2) against rk_svo_trace per ray and
+// rays sharing one traversal: 8 x 4 on AVX-512 lanes where the CPU has them, else 4 x 4 on AVX2) against rk_svo_trace per ray and
 // svo_trace_rays (8 AVX2 lanes, one ray per lane), paired in one process: the same tree and the
 // same 512 x 512 primary rays of raykit_bench_trace's scenes, the three tracers run in turn
 // (rotating which goes first) in chunks of 4 rows (as raykit_bench_trace hands them out), each pass

@@ -24,9 +24,9 @@ const TracerRegistrar reg_simd(TracerSpec{"raykit_simd", "raykit svo_trace_rays 
                                           31, true, {8, 9, 10, 11, 12}, false,
                                           [](const Scene& s, int depth) { return prepare(s, depth, 1); }, 50.0, 2.0, -3.0});
 
-// Coherent rays (8 x 4 pixel tiles on AVX-512, else 4 x 2) sharing one traversal (raykit/svo_trace_packet.hpp):
+// Coherent rays (8 x 4 pixel tiles on AVX-512, else 4 x 4 on AVX2) sharing one traversal (raykit/svo_trace_packet.hpp):
 // the answers are rk_svo_trace's (test_svo_trace_packet).
-const TracerRegistrar reg_packet(TracerSpec{"raykit_packet", "raykit svo_trace_packets (8x4 ray packets on AVX-512 lanes, else 4x2 on AVX2), geometry only",
+const TracerRegistrar reg_packet(TracerSpec{"raykit_packet", "raykit svo_trace_packets (8x4 ray packets on AVX-512 lanes, else 4x4 on AVX2), geometry only",
                                             32, true, {8, 9, 10, 11, 12}, false,
                                             [](const Scene& s, int depth) { return prepare(s, depth, 2); }, 50.0, 2.0, -3.0});
 

@@ -59,7 +59,8 @@ Prepared prepare(const Scene& s, int depth, int mode, float lod_pixels = 0.0f)
     }
     if (mode == 2) {
         // svo_trace_packets over each chunk of 4 rows, its default tiles: 8 x 4 (32 rays per traversal
-        // on AVX-512 lanes) where the CPU has AVX-512, else 4 x 2 (8 rays on AVX2 lanes).
+        // on AVX-512 lanes) where the CPU has AVX-512, else 4 x 4 (16 rays on two AVX2 registers per
+        // value).
         const std::size_t width = static_cast<std::size_t>(s.camera.width);
         const glm::vec2 cone = lod_pixels > 0.0f ? raykit::rk_svo_pixel_cone(2.0f * std::atan(s.camera.tan_half_fov_y),
                                                                              static_cast<float>(s.camera.height), lod_pixels)
