@@ -2,16 +2,17 @@
 // for every lane width. svo_trace_packet.hpp includes it once per width, with
 //   RK_SVO_PW_NAME    the function's name,
 //   RK_SVO_PW_TARGET  its target attribute (the lanes' instruction set),
-//   RK_SVO_PW_LANES   the lane traits (Lanes8: AVX2, Lanes16: AVX-512; see svo_trace_packet.hpp),
-//   RK_SVO_PW_SETUP   the set-up type (Setup, Setup16, Setup32),
+//   RK_SVO_PW_LANES   the lane traits (Lanes8: AVX2, Lanes16: AVX-512, and pairs of them:
+//                     Lanes8x2, Lanes32; see svo_trace_packet.hpp),
+//   RK_SVO_PW_SETUP   the set-up type (SetupLanes<N> for N lanes),
 //   RK_SVO_PW_EXPAND  the name of its node expansion (a function template on the lane traits),
 //   RK_SVO_PW_HALVES  (lane pairs only, svo_packet_pair.inl) expand a node whose rays lie in one
 //                     half on that half's lanes,
 // defined, and undefines them after. Not a header of its own: no include guard on purpose.
 
 // The expansion of node `e` for its rays R (ray bits; more than one ray, or children at the leaf
-// level) on the lanes of LL, which hold rays sh .. sh + LL::N - 1 (sh 16: the upper half of a
-// 32-ray packet whose rays at this node all lie there; P: the packet's planes on those lanes).
+// level) on the lanes of LL, which hold rays sh .. sh + LL::N - 1 (sh > 0: the upper half of a
+// lane pair whose rays at this node all lie there; P: the packet's planes on those lanes).
 // Answers the rays that hit among its children; pushes the inner children each ray enters, back
 // to front.
 template <class LL>
