@@ -113,21 +113,13 @@ void compare_hits(const char* what, const SvoTree& t, const rk_svo_tree& tree, c
 void trace_avx2_16(const std::vector<uint32_t>& words, const rk_svo_tree& tree, const std::vector<SvoRay>& rays, size_t width,
                    std::vector<rk_svo_trace_hit>& out, glm::vec2 cone)
 {
-    const size_t n = rays.size(), w = width > 0 ? width : 16u, tw = width > 0 ? 4u : 16u, th = width > 0 ? 4u : 1u;
-    const size_t rows = (n + w - 1u) / w;
-    for (size_t y0 = 0; y0 < rows; y0 += th)
-        for (size_t x0 = 0; x0 < w; x0 += tw) {
-            const SvoRay* rp[16];
-            rk_svo_trace_hit* hp[16];
-            unsigned k = 0;
-            for (size_t y = y0; y < y0 + th && y < rows; ++y)
-                for (size_t x = x0; x < x0 + tw && x < w && y * w + x < n; ++x) {
-                    rp[k] = &rays[y * w + x];
-                    hp[k++] = &out[y * w + x];
-                }
-            if (k != 0u && !svo_packet_detail::packet16_avx2(words.data(), tree, rp, hp, k, cone))
-                for (unsigned i = 0; i < k; ++i) *hp[i] = rk_svo_trace(words.data(), tree, rp[i]->origin, rp[i]->dir, rp[i]->t_max, cone);
-        }
+    const auto avx2_16 = [](const uint32_t* w, const rk_svo_tree& tr, const SvoRay* const* rp, rk_svo_trace_hit* const* hp, unsigned k,
+                            glm::vec2 c) {
+        if (!svo_packet_detail::packet16_avx2(w, tr, rp, hp, k, c))
+            for (unsigned i = 0; i < k; ++i) *hp[i] = rk_svo_trace(w, tr, rp[i]->origin, rp[i]->dir, rp[i]->t_max, c);
+    };
+    svo_packet_detail::trace_tiles(words.data(), tree, rays.data(), rays.size(), width > 0 ? width : 16u, out.data(), width > 0 ? 4u : 16u,
+                                   width > 0 ? 4u : 1u, cone, avx2_16);
 }
 
 /// Traces `rays` as packets (row-major frame `width` wide in 4x2, 4x4 and 8x4 tiles, or consecutive

@@ -27,7 +27,7 @@ TEST(SvoTracePacket, RandomTrees)
     unsigned tw = 0u, th = 0u;
     svo_trace_packet_best_tile(tw, th);
     std::printf("[packet] default tile %ux%u; 16- and 32-ray packets on %s\n", tw, th,
-                th == 4u ? "AVX-512 lanes" : "8-ray packets (no AVX-512F here)");
+                tw == 8u ? "AVX-512 lanes" : "AVX2 registers (no AVX-512F here)");
     Tally total;
     for (uint32_t depth : {1u, 2u, 3u, 6u, 10u}) {
         const size_t side3 = size_t(1) << (3 * std::min(depth, 8u));
@@ -129,8 +129,8 @@ TEST(SvoTracePacket, NoNanOnHostileInput)
 }
 
 // Tiles that do not divide the frame, a partial last row, odd and out-of-range tile sizes (a tile
-// whose ray count overflows 32 bits traces 8 rays at a time), and the default tile for a block:
-// every answer is rk_svo_trace's (or an accepted tie), whatever the tile.
+// whose ray count overflows 32 bits traces 8 rays at a time) and the default tile: every answer is
+// rk_svo_trace's (or an accepted tie), whatever the tile.
 TEST(SvoTracePacket, PartialAndOddTiles)
 {
     SvoTree t = svotest::pack_cells(7, svotest::random_cells(7, 30000, 17));

@@ -843,6 +843,30 @@ inline void packet32(const uint32_t* words, const rk_svo_tree& tree, const SvoRa
     packets_of(words, tree, rp, hp, n, cone, 16u, packet16);
 }
 
+// The rays of a row-major block `width` wide (n rays, partial last row allowed) in tiles of
+// tile_w x tile_h (tile_w * tile_h <= 32; partial at the right and bottom edges), each traced by
+// `fn` (packet8, packet16, packet32 or a test's own) on pointers to its rays and answers.
+template <class PacketFn>
+inline void trace_tiles(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, std::size_t n, std::size_t width,
+                        rk_svo_trace_hit* hits, unsigned tile_w, unsigned tile_h, glm::vec2 cone, PacketFn fn)
+{
+    const std::size_t rows = (n + width - 1u) / width;
+    const SvoRay* rp[32];
+    rk_svo_trace_hit* hp[32];
+    for (std::size_t y0 = 0; y0 < rows; y0 += tile_h)
+        for (std::size_t x0 = 0; x0 < width; x0 += tile_w) {
+            unsigned k = 0;
+            for (std::size_t y = y0; y < y0 + tile_h && y < rows; ++y)
+                for (std::size_t x = x0; x < x0 + tile_w && x < width; ++x) {
+                    const std::size_t i = y * width + x;
+                    if (i >= n) continue;
+                    rp[k] = rays + i;
+                    hp[k++] = hits + i;
+                }
+            if (k != 0u) fn(words, tree, rp, hp, k, cone);
+        }
+}
+
 // packet8, packet16 or packet32 (`fn`) on n <= N contiguous rays and answers.
 template <unsigned N, class PacketFn>
 inline void packet_contiguous(const uint32_t* words, const rk_svo_tree& tree, const SvoRay* rays, rk_svo_trace_hit* hits, unsigned n,
@@ -918,27 +942,8 @@ inline void svo_trace_packets(const uint32_t* words, const rk_svo_tree& tree, co
         return;
     }
     const unsigned lanes = tile_w * tile_h;
-    const std::size_t rows = (n + width - 1u) / width;
-    const SvoRay* rp[32];
-    rk_svo_trace_hit* hp[32];
-    for (std::size_t y0 = 0; y0 < rows; y0 += tile_h)
-        for (std::size_t x0 = 0; x0 < width; x0 += tile_w) {
-            unsigned k = 0;
-            for (std::size_t y = y0; y < y0 + tile_h && y < rows; ++y)
-                for (std::size_t x = x0; x < x0 + tile_w && x < width; ++x) {
-                    const std::size_t i = y * width + x;
-                    if (i >= n) continue;
-                    rp[k] = rays + i;
-                    hp[k++] = hits + i;
-                }
-            if (k == 0u) continue;
-            if (lanes > 16u)
-                svo_packet_detail::packet32(words, tree, rp, hp, k, cone);
-            else if (lanes > 8u)
-                svo_packet_detail::packet16(words, tree, rp, hp, k, cone);
-            else
-                svo_packet_detail::packet8(words, tree, rp, hp, k, cone);
-        }
+    const auto fn = lanes > 16u ? svo_packet_detail::packet32 : lanes > 8u ? svo_packet_detail::packet16 : svo_packet_detail::packet8;
+    svo_packet_detail::trace_tiles(words, tree, rays, n, width, hits, tile_w, tile_h, cone, fn);
 }
 
 }  // namespace RK_SVO_RAYS_NS_CAT(RK_SVO_RAYS_SIMD)
