@@ -1076,6 +1076,23 @@ def volumes_summary(out_dir):
         "[volume.md](volume.md)).",
         "scripts/bench_volumes.sh")
 
+def gpu_figures_line(out_dir):
+    """Which pages hold figures from a GPU (those scripts/bench_gpu.sh writes), and that the
+    function micro-benchmarks' CPU times are ratios only."""
+    pages = [(name, page) for name, page in (("interior mapping's frame times", "benchmarks_interior_gpu.md"),
+                                             ("the octree voxel pass", "benchmarks_svo_gl_gpu.md"),
+                                             ("forward against deferred shading", "benchmarks_deferred_gpu.md"),
+                                             ("the volume techniques", "benchmarks_volumes_gpu.md"))
+             if os.path.exists(os.path.join(out_dir, page))]
+    if not pages:
+        return "None were recorded yet on a GPU. The CPU times above are ratios only."
+    names = [f"{name} ([{page}]({page}))" for name, page in pages]
+    where = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    return (f"Recorded on a GPU (its name heads each page): {where}; the first two are quoted in their "
+            "sections above. None yet for the per-function benchmarks on this page, whose CPU times are "
+            "ratios only; what carries over to a GPU:")
+
+
 def svo_gl_gpu_summary(out_dir):
     """The GPU frame times and ray rates of the voxel pass, quoted from benchmarks_svo_gl_gpu.md (a
     run of bench_svo_gl on a GPU by scripts/bench_gpu.sh, reported by scripts/bench_svo_gl.sh)."""
@@ -1123,10 +1140,12 @@ def svo_trace_summary(out_dir):
               "lanes, the same answers bit for bit) and `svo_trace_packets` (pixel tiles sharing one traversal: 8x4 on AVX-512, else 4x4 on AVX2) against Embree on the source triangles and "
               "OpenVDB's level-set ray intersector, 512x512 primary rays, single thread "
               "([benchmarks_trace.md](benchmarks_trace.md), `bash scripts/bench_trace.sh`; every depth 8-12, "
-              "2 threads, build times, hit agreement). Issue 11's goals: at least 5x OpenVDB and at least "
-              "Embree's speed. *best* is the fastest full-detail raykit row; the last column is the packets in a "
-              "level-of-detail build stopping at nodes one pixel wide (a coarser answer: the hits of the tree "
-              "whose voxels match the pixels) on the depth-12 tree.")
+              "2 threads, build times, hit agreement). Embree is timed two ways: single rays (`rtcIntersect1`, "
+              "the form issue 11's reference figures come from) and its coherent stream (`rtcIntersect1M` "
+              "over 4x4 pixel tiles with the coherent flag: its packets, the fair peer of raykit's). Issue 11's "
+              "goals: at least 5x OpenVDB and at least Embree's speed. *best* is the fastest full-detail raykit "
+              "row; the LOD columns are the packets in a level-of-detail build stopping at nodes one pixel wide "
+              "(a coarser answer: the hits of the tree whose voxels match the pixels) on the depth-12 tree.")
     md.append("")
     path = os.path.join(out_dir, "benchmarks_trace.md")
     if not os.path.exists(path):
@@ -1135,25 +1154,29 @@ def svo_trace_summary(out_dir):
     else:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
-        table = ["| mesh | Embree Mrays/s | OpenVDB d10 | raykit d10 | raykit SIMD d10 | raykit packets d10 | best / OpenVDB | best / Embree | 1-px LOD packets d12 / Embree |",
-                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
-        mesh, e, v, r, rs, rp, rl = None, None, None, None, None, None, None
+        table = ["| mesh | Embree Mrays/s | Embree coherent | OpenVDB d10 | raykit d10 | raykit SIMD d10 | raykit packets d10 | best / OpenVDB | best / Embree | best / Embree coherent | 1-px LOD d12 / Embree | 1-px LOD d12 / Embree coherent |",
+                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        mesh, e, ec, v, r, rs, rp, rl = None, None, None, None, None, None, None, None
 
         def flush():
             if mesh and e and r:
                 best = max([float(r)] + [float(x) for x in (rs, rp) if x])
                 rv = f"{best / float(v):.2f}" if v else "-"
                 lod = f"{float(rl) / float(e):.2f}" if rl else "-"
-                table.append(f"| {mesh} | {e} | {v or '-'} | {r} | {rs or '-'} | {rp or '-'} | {rv} | {best / float(e):.2f} | {lod} |")
+                bc = f"{best / float(ec):.2f}" if ec else "-"
+                lodc = f"{float(rl) / float(ec):.2f}" if rl and ec else "-"
+                table.append(f"| {mesh} | {e} | {ec or '-'} | {v or '-'} | {r} | {rs or '-'} | {rp or '-'} | {rv} | {best / float(e):.2f} | {bc} | {lod} | {lodc} |")
 
         for l in lines:
             if l.startswith("## "):
                 flush()
-                mesh, e, v, r, rs, rp, rl = l[3:].strip(), None, None, None, None, None, None
+                mesh, e, ec, v, r, rs, rp, rl = l[3:].strip(), None, None, None, None, None, None, None
             cells = [c.strip() for c in l.strip().strip("|").split("|")] if l.startswith("|") else []
             if len(cells) > 3:
                 if cells[0] == "Embree":
                     e = cells[2]
+                elif cells[0] == "Embree, coherent":
+                    ec = cells[2]
                 elif cells[0] == "OpenVDB" and cells[1] == "10":
                     v = cells[2]
                 elif cells[0] == "raykit" and cells[1] == "10":
@@ -1383,7 +1406,7 @@ def write_markdown(context, rows, suites, out_dir, pngs, errors=(), consecutive=
             md.append("")
     md.append("## GPU figures")
     md.append("")
-    md.append("None were recorded yet on a GPU. The CPU times above are ratios only.")
+    md.append(gpu_figures_line(out_dir))
     md.append("")
     for suite in suites:
         if suite.gpu:
