@@ -87,23 +87,35 @@ def main():
         "scale 1): a coarser answer than full detail (its *t − t_Embree* is in voxels of depth D, and its "
         "hits are those of the tree whose voxels match the pixels), for renderers that need no sub-pixel "
         "detail; answers rk_svo_trace's in the same build (test_svo_trace_packet's LOD part).\n"
-        "- **Embree**: `rtcIntersect1` per ray on the source triangles (BVH quality high).\n"
+        "- **Embree**: `rtcIntersect1` per ray on the source triangles (BVH quality high): single rays, the "
+        "reference every other row's hits are checked against.\n"
+        "- **Embree, coherent**: the same BVH traced with Embree's own support for coherent rays, "
+        "`rtcIntersect1M` over each chunk's rays in 4x4 pixel-tile order with "
+        "`RTC_INTERSECT_CONTEXT_FLAG_COHERENT` (it forms ray packets inside); the fastest Embree form "
+        "measured for these frames (bench/trace/trace_embree.cpp lists the others), and the peer of "
+        "raykit's packets.\n"
         "- **OpenVDB**: `LevelSetRayIntersector` on `meshToLevelSet` at the same voxel size (half-width 3).\n")
     out.append(
         "Issue 11's goals on a 2-core machine, single thread: **at least 5x OpenVDB** and **at least "
         "Embree's speed** (reference figures: Embree 10.5 Mrays/s on a 5,856-triangle mesh, 7.5 on a "
-        "69,451-triangle mesh; OpenVDB 1.06 Mrays/s at depth 10). *hits vs Embree* is the hit-count "
+        "69,451-triangle mesh, single rays; OpenVDB 1.06 Mrays/s at depth 10). *raykit ÷ Embree* is against "
+        "Embree's single rays, *÷ coherent* against its coherent stream. *hits vs Embree* is the hit-count "
         "difference: a surface voxelisation is conservative (its shell reaches up to a voxel outside the "
         "surface), so it hits a little more at silhouettes, and about 1.5 voxels earlier.\n")
     for mesh in meshes:
         title = ctx.get(f"raykit_trace_scene:{mesh}", mesh)
         out.append(f"\n## {mesh}\n\n{title}\n")
-        out.append("| tracer | depth | 1 thread Mrays/s | 2 threads Mrays/s | build ms | raykit ÷ OpenVDB (1t) | raykit ÷ Embree (1t) | hits vs Embree | t − t_Embree (voxels) | bytes/voxel |")
-        out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        out.append("| tracer | depth | 1 thread Mrays/s | 2 threads Mrays/s | build ms | raykit ÷ OpenVDB (1t) | raykit ÷ Embree (1t) | ÷ coherent (1t) | hits vs Embree | t − t_Embree (voxels) | bytes/voxel |")
+        out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         e1 = mr(mesh, "embree", -1, 1)
+        ec = mr(mesh, "embree_coherent", -1, 1)
         if e1 is not None:
             b = rows[(mesh, "embree", -1, 1)]
-            out.append(f"| Embree | — | {fmt(e1)} | {fmt(mr(mesh, 'embree', -1, 2))} | {b['build_ms']:.0f} | | | | | |")
+            out.append(f"| Embree | — | {fmt(e1)} | {fmt(mr(mesh, 'embree', -1, 2))} | {b['build_ms']:.0f} | | | | | | |")
+        if ec is not None:
+            b = rows[(mesh, "embree_coherent", -1, 1)]
+            hits = f"{b.get('hit_diff_pct', 0):+.2f} %" if "hit_diff_pct" in b else ""
+            out.append(f"| Embree, coherent | — | {fmt(ec)} | {fmt(mr(mesh, 'embree_coherent', -1, 2))} | {b['build_ms']:.0f} | | | | {hits} | | |")
         depths = sorted({k[2] for k in rows if k[0] == mesh and k[2] >= 0})
         for d in depths:
             for tracer in ("openvdb", "raykit", "raykit_simd", "raykit_packet", "raykit_packet_lod"):
@@ -115,12 +127,13 @@ def main():
                 ours = tracer.startswith("raykit")
                 ratio_vdb = fmt(r1 / vdb) if ours and vdb else ""
                 ratio_e = fmt(r1 / e1) if ours and e1 else ""
+                ratio_c = fmt(r1 / ec) if ours and ec else ""
                 hits = f"{b.get('hit_diff_pct', 0):+.2f} %" if "hit_diff_pct" in b else ""
                 dt = f"{b.get('dt_vox', 0):+.2f}" if "dt_vox" in b else ""
                 bpv = fmt(b.get("bytes_per_voxel"), 3) if ours else ""
                 name = {"raykit": "raykit", "raykit_simd": "raykit SIMD", "raykit_packet": "raykit packets",
                         "raykit_packet_lod": "raykit packets, 1-px LOD"}.get(tracer, "OpenVDB")
-                out.append(f"| {name} | {d} | {fmt(r1)} | {fmt(mr(mesh, tracer, d, 2))} | {b['build_ms']:.0f} | {ratio_vdb} | {ratio_e} | {hits} | {dt} | {bpv} |")
+                out.append(f"| {name} | {d} | {fmt(r1)} | {fmt(mr(mesh, tracer, d, 2))} | {b['build_ms']:.0f} | {ratio_vdb} | {ratio_e} | {ratio_c} | {hits} | {dt} | {bpv} |")
     out.append("\n![Mrays/s by depth, single thread](img/bench_trace_mrays.png)\n")
 
     # Plot: one panel per mesh, single-thread Mrays/s by depth: raykit's tracers as lines, OpenVDB
@@ -138,7 +151,7 @@ def main():
             f"set terminal pngcairo size 1200,{420 * nrows} font 'DejaVu Sans,10' noenhanced",
             f"set output '{img}'",
             f"set multiplot layout {nrows},{cols} title 'CPU primary rays, single thread (512x512 frame): Mrays/s by octree depth'",
-            "set logscale y", "set grid", "set xrange [7.5:12.5]", "set yrange [0.5:50]", "set xtics 1",
+            "set logscale y", "set grid", "set xrange [7.5:12.5]", "set yrange [0.5:200]", "set xtics 1",
             "set xlabel 'octree depth'", "set ylabel 'Mrays/s'", "set key bottom right font ',8' samplen 3",
         ]
         for mesh in meshes:
@@ -154,7 +167,10 @@ def main():
                 plots.append(f"'{path}' using 1:2 with {style} title '{label}'")
             e1 = mr(mesh, "embree", -1, 1)
             if e1:
-                plots.append(f"{e1} with lines dt 2 lw 2 lc rgb '#9467bd' title 'Embree (triangles)'")
+                plots.append(f"{e1} with lines dt 2 lw 2 lc rgb '#9467bd' title 'Embree, single rays'")
+            ec = mr(mesh, "embree_coherent", -1, 1)
+            if ec:
+                plots.append(f"{ec} with lines dt 1 lw 2 lc rgb '#8c564b' title 'Embree, coherent stream'")
             gp.append(f"set title '{mesh}'")
             gp.append("plot " + ", \\\n     ".join(plots))
         gp.append("unset multiplot")
