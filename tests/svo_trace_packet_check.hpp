@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "raykit/svo_build.hpp"
+#include "raykit/svo_secondary.hpp"
 #include "raykit/svo_trace_packet.hpp"
 #include "reference/svo_dda_ref.hpp"
 #include "reference/svo_meshes.hpp"
@@ -255,6 +256,35 @@ std::vector<SvoRay> camera(const SvoTree& t, glm::vec3 from, int w, int h, float
     return out;
 }
 
+/// Shadow rays of a frame, in its pixels' places (so a tile's shadow rays are its pixels'): from each
+/// hit of `frame` (rk_svo_trace's, the point from rk_svo_hit_point, the start from
+/// rk_svo_secondary_origin, as rk_svo_shadowed does) towards a directional light `light` (a
+/// direction), or with `point` towards the point `light` (t_max its distance); a missed pixel's ray
+/// starts beyond the root's far corner and leaves along (1, 1, 1).
+std::vector<SvoRay> shadow_rays(const SvoTree& t, const std::vector<SvoRay>& frame, glm::vec3 light, bool point)
+{
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const std::vector<uint32_t> words = t.gpu_words();
+    std::vector<SvoRay> out(frame.size());
+    for (size_t i = 0; i < frame.size(); ++i) {
+        const SvoRay& r = frame[i];
+        const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
+        SvoRay& s = out[i];
+        if (!h.hit) {
+            s.origin = t.root_min + glm::vec3(2.0f * t.root_size);
+            s.dir = glm::normalize(glm::vec3(1.0f));
+            continue;
+        }
+        const glm::vec3 p = rk_svo_hit_point(tree, r.origin, r.dir, h);
+        const glm::vec3 d = point ? light - p : light;
+        const float len = glm::length(d);
+        s.dir = d / len;
+        s.origin = rk_svo_secondary_origin(p, h.normal, s.dir, tree, h.level);
+        if (point) s.t_max = glm::length(light - s.origin);
+    }
+    return out;
+}
+
 /// Random coherent packets: 8 rays from one origin (outside or inside the root) with directions
 /// within `spread` radians of a random one, and packets of parallel rays with nearby origins.
 std::vector<SvoRay> coherent_packets(const SvoTree& t, size_t packets, uint64_t seed)
@@ -319,6 +349,16 @@ void all_sets(const std::string& name, const SvoTree& t, Tally& total, size_t sc
             all, cone);
     compare((name + " camera inside the root").c_str(), t, camera(t, glm::vec3(0.2f, 0.1f, 1.0f), 64, 48, 0.2f, 0.8f), 64, total, all,
             cone);
+    // Secondary rays as packets: shadow rays of the 3/4 view towards a sun, along an axis (rays in
+    // face planes' lattice), and towards a point light inside the root.
+    const std::vector<SvoRay> view = camera(t, glm::vec3(0.45f, 0.35f, 1.0f), 128, 96);
+    const glm::vec3 centre = t.root_min + glm::vec3(0.5f * t.root_size);
+    compare((name + " shadow rays, sun").c_str(), t, shadow_rays(t, view, glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f)), false), 128,
+            total, all, cone);
+    compare((name + " shadow rays, sun along +y").c_str(), t, shadow_rays(t, view, glm::vec3(0.0f, 1.0f, 0.0f), false), 128, total, all,
+            cone);
+    compare((name + " shadow rays, point light").c_str(), t,
+            shadow_rays(t, view, centre + t.root_size * glm::vec3(0.3f, 0.45f, 0.2f), true), 128, total, all, cone);
     compare((name + " coherent packets").c_str(), t, coherent_packets(t, 500 * scale, 7), 0, total, all, cone);
     compare((name + " adversarial mixed").c_str(), t, adversarial(t, 4000 * scale, 11, false), 0, total, all, cone);
     compare((name + " adversarial by family").c_str(), t, adversarial(t, 4000 * scale, 13, true), 0, total, all, cone);

@@ -10,6 +10,11 @@
 // per packet.
 // Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key or "all" (default: all)]
 //        [tile width] [tile height] (default: svo_trace_packet_best_tile)
+// RAYKIT_AB_SHADOW=1 traces shadow rays instead: from each primary hit (rk_svo_trace's, the point
+// from rk_svo_hit_point, the start from rk_svo_secondary_origin) towards a directional light of
+// direction normalize(0.4, 0.8, 0.45), in the pixel's place in the image, so a tile's shadow rays are
+// its pixels'; a pixel whose primary ray missed gets a ray that starts beyond the root's far corner
+// and goes the same way (it misses at once, as it would in a renderer that traces every pixel).
 #include <time.h>
 
 #include <algorithm>
@@ -19,6 +24,7 @@
 #include <vector>
 
 #include "raykit/svo_build.hpp"
+#include "raykit/svo_secondary.hpp"
 #include "raykit/svo_trace_packet.hpp"
 #include "raykit/svo_trace_simd.hpp"
 #include "trace_scene.hpp"
@@ -61,6 +67,19 @@ int main(int argc, char** argv)
         }
         const size_t n = rays.size();
         const size_t width = size_t(s.camera.width);
+        const char* shadow_env = std::getenv("RAYKIT_AB_SHADOW");
+        const bool shadow = shadow_env != nullptr && std::strcmp(shadow_env, "1") == 0;
+        if (shadow) {
+            const glm::vec3 to_light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f));
+            const glm::vec3 beyond = tree.root_min + glm::vec3(2.0f * tree.root_size);
+            for (size_t i = 0; i < n; ++i) {
+                const raykit::rk_svo_trace_hit h =
+                    raykit::rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+                const glm::vec3 p = raykit::rk_svo_hit_point(tree, rays[i].origin, rays[i].dir, h);
+                rays[i].origin = h.hit ? raykit::rk_svo_secondary_origin(p, h.normal, to_light, tree, h.level) : beyond;
+                rays[i].dir = to_light;
+            }
+        }
         const size_t chunk = 4 * width;
         std::vector<raykit::rk_svo_trace_hit> hits[3];
         for (auto& h : hits) h.resize(n);
@@ -114,9 +133,9 @@ int main(int argc, char** argv)
                 expansions += mx;
                 packets += mx > 0 ? 1 : 0;
             }
-        std::printf("%-16s d%d: %zu rays, %ld hit, %ld enter the root (%.1f rk iterations each); packets %ux%u: %ld entering, "
+        std::printf("%s%-16s d%d: %zu rays, %ld hit, %ld enter the root (%.1f rk iterations each); packets %ux%u: %ld entering, "
                     "%.1f node expansions each\n",
-                    s.key.c_str(), depth, n, hit_count, entered, double(it) / double(std::max(entered, 1L)), tw, th, packets,
+                    shadow ? "shadow rays, " : "", s.key.c_str(), depth, n, hit_count, entered, double(it) / double(std::max(entered, 1L)), tw, th, packets,
                     double(expansions) / double(std::max(packets, 1L)));
         for (int m = 0; m < 3; ++m) {
             std::vector<double> a = vs_rk[m], b = vs_rays[m];
