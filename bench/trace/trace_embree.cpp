@@ -45,6 +45,25 @@ void check(RTCDevice device, const char* what)
     if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("embree: ") + what + " failed (error " + std::to_string(static_cast<int>(e)) + ")");
 }
 
+// A ray of the frame as Embree's ray and hit record: t from 0 to kMiss, no hit yet.
+void ray_hit(RTCRayHit& rh, const Ray& r)
+{
+    rh.ray.org_x = r.org.x;
+    rh.ray.org_y = r.org.y;
+    rh.ray.org_z = r.org.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.dir_x = r.dir.x;
+    rh.ray.dir_y = r.dir.y;
+    rh.ray.dir_z = r.dir.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = kMiss;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 Prepared prepare(const Scene& s, int /*depth*/)
 {
     auto e = std::make_shared<EmbreeScene>();
@@ -78,20 +97,7 @@ Prepared prepare(const Scene& s, int /*depth*/)
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
             RTCRayHit rh;
-            rh.ray.org_x = r.org.x;
-            rh.ray.org_y = r.org.y;
-            rh.ray.org_z = r.org.z;
-            rh.ray.tnear = 0.0f;
-            rh.ray.dir_x = r.dir.x;
-            rh.ray.dir_y = r.dir.y;
-            rh.ray.dir_z = r.dir.z;
-            rh.ray.time = 0.0f;
-            rh.ray.tfar = kMiss;
-            rh.ray.mask = ~0u;
-            rh.ray.id = 0;
-            rh.ray.flags = 0;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            ray_hit(rh, r);
             rtcIntersect1(scene, &ctx, &rh);
             return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kMiss;
         });
@@ -120,23 +126,8 @@ Prepared prepare_coherent(const Scene& s, int depth)
                     for (std::size_t y = y0; y < std::min(rows, y0 + 4); ++y)
                         for (std::size_t x = x0; x < std::min(width, x0 + 4); ++x) {
                             const std::size_t i = y * width + x;
-                            const Ray& r = rays[i];
-                            RTCRayHit& rh = (*buf)[c];
+                            ray_hit((*buf)[c], rays[i]);
                             (*at)[c++] = i;
-                            rh.ray.org_x = r.org.x;
-                            rh.ray.org_y = r.org.y;
-                            rh.ray.org_z = r.org.z;
-                            rh.ray.tnear = 0.0f;
-                            rh.ray.dir_x = r.dir.x;
-                            rh.ray.dir_y = r.dir.y;
-                            rh.ray.dir_z = r.dir.z;
-                            rh.ray.time = 0.0f;
-                            rh.ray.tfar = kMiss;
-                            rh.ray.mask = ~0u;
-                            rh.ray.id = 0;
-                            rh.ray.flags = 0;
-                            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                         }
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
