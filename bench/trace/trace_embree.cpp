@@ -6,18 +6,19 @@
 //   embree_coherent  rtcIntersect1M over the span's rays in 4x4 pixel-tile order with
 //                  RTC_INTERSECT_CONTEXT_FLAG_COHERENT: Embree's own answer to coherent primary rays
 //                  (it forms packets inside), the peer of raykit's packets. The fastest form measured on
-//                  an AVX-512 CPU (5 meshes, depths' frames 8/10/12, paired in one process): 2.7-3.9x
-//                  rtcIntersect1; rtcIntersect16 on 4x4 tiles 0.86-1.05x it, on 8x2 tiles 0.78-1.00x,
+//                  an AVX-512 CPU (the 5 meshes' frames, 3 runs of a scratch program timing every form
+//                  in one process, interleaved): 2.7-3.9x rtcIntersect1 there (3.1-4.2x in the trace
+//                  bench); rtcIntersect16 on 4x4 tiles 0.86-1.05x it, on 8x2 tiles 0.78-1.00x,
 //                  rtcIntersect8 on 4x2 tiles 0.77-0.90x; without the coherent flag 16-ray packets
 //                  lose half their speed.
 // Compiled only when find_package(embree 3 CONFIG) succeeds (bench/trace/CMakeLists.txt).
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
-#include <algorithm>
 
 #include <embree3/rtcore.h>
 
