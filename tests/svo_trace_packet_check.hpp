@@ -256,12 +256,14 @@ std::vector<SvoRay> camera(const SvoTree& t, glm::vec3 from, int w, int h, float
     return out;
 }
 
-/// Shadow rays of a frame, in its pixels' places (so a tile's shadow rays are its pixels'): from each
-/// hit of `frame` (rk_svo_trace's, the point from rk_svo_hit_point, the start from
-/// rk_svo_secondary_origin, as rk_svo_shadowed does) towards a directional light `light` (a
-/// direction), or with `point` towards the point `light` (t_max its distance); a missed pixel's ray
-/// starts beyond the root's far corner and leaves along (1, 1, 1).
-std::vector<SvoRay> shadow_rays(const SvoTree& t, const std::vector<SvoRay>& frame, glm::vec3 light, bool point)
+/// Secondary rays of a frame, in its pixels' places (so a tile's secondary rays are its pixels'):
+/// from each hit of `frame` (rk_svo_trace's, the point from rk_svo_hit_point, the start from
+/// rk_svo_secondary_origin, as svo_secondary.glsl does), shadow rays towards a directional light of
+/// direction `light` (sun) or towards the point `light` (point; t_max its distance), or the mirror
+/// reflection about the hit's face normal (mirror; rk_svo_interface_at's reflected direction). A
+/// missed pixel's ray starts beyond the root's far corner and leaves along (1, 1, 1).
+enum class Secondary { sun, point, mirror };
+std::vector<SvoRay> secondary_rays(const SvoTree& t, const std::vector<SvoRay>& frame, Secondary kind, glm::vec3 light = glm::vec3(0.0f))
 {
     const rk_svo_tree tree = svo_trace_tree(t);
     const std::vector<uint32_t> words = t.gpu_words();
@@ -276,11 +278,11 @@ std::vector<SvoRay> shadow_rays(const SvoTree& t, const std::vector<SvoRay>& fra
             continue;
         }
         const glm::vec3 p = rk_svo_hit_point(tree, r.origin, r.dir, h);
-        const glm::vec3 d = point ? light - p : light;
-        const float len = glm::length(d);
-        s.dir = d / len;
+        s.dir = kind == Secondary::sun     ? light
+                : kind == Secondary::point ? glm::normalize(light - p)
+                                           : rk_svo_interface_at(r.dir, h.normal, 1.0f, 1.5f).reflected;
         s.origin = rk_svo_secondary_origin(p, h.normal, s.dir, tree, h.level);
-        if (point) s.t_max = glm::length(light - s.origin);
+        if (kind == Secondary::point) s.t_max = glm::length(light - s.origin);
     }
     return out;
 }
@@ -349,16 +351,18 @@ void all_sets(const std::string& name, const SvoTree& t, Tally& total, size_t sc
             all, cone);
     compare((name + " camera inside the root").c_str(), t, camera(t, glm::vec3(0.2f, 0.1f, 1.0f), 64, 48, 0.2f, 0.8f), 64, total, all,
             cone);
-    // Secondary rays as packets: shadow rays of the 3/4 view towards a sun, along an axis (rays in
-    // face planes' lattice), and towards a point light inside the root.
-    const std::vector<SvoRay> view = camera(t, glm::vec3(0.45f, 0.35f, 1.0f), 128, 96);
+    // Secondary rays as packets, from the 3/4 view's hits: shadow rays towards a sun, towards a sun
+    // along an axis (rays in the lattice's planes) and towards a point light inside the root, and
+    // mirror reflections (a tile's reflections may fall in several octants).
+    const size_t vw = 96;
+    const std::vector<SvoRay> view = camera(t, glm::vec3(0.45f, 0.35f, 1.0f), int(vw), 64);
     const glm::vec3 centre = t.root_min + glm::vec3(0.5f * t.root_size);
-    compare((name + " shadow rays, sun").c_str(), t, shadow_rays(t, view, glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f)), false), 128,
-            total, all, cone);
-    compare((name + " shadow rays, sun along +y").c_str(), t, shadow_rays(t, view, glm::vec3(0.0f, 1.0f, 0.0f), false), 128, total, all,
-            cone);
-    compare((name + " shadow rays, point light").c_str(), t,
-            shadow_rays(t, view, centre + t.root_size * glm::vec3(0.3f, 0.45f, 0.2f), true), 128, total, all, cone);
+    const glm::vec3 sun = glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f)), up(0.0f, 1.0f, 0.0f);
+    const glm::vec3 lamp = centre + t.root_size * glm::vec3(0.3f, 0.45f, 0.2f);
+    compare((name + " shadow rays, sun").c_str(), t, secondary_rays(t, view, Secondary::sun, sun), vw, total, all, cone);
+    compare((name + " shadow rays, sun along +y").c_str(), t, secondary_rays(t, view, Secondary::sun, up), vw, total, all, cone);
+    compare((name + " shadow rays, point light").c_str(), t, secondary_rays(t, view, Secondary::point, lamp), vw, total, all, cone);
+    compare((name + " mirror reflections").c_str(), t, secondary_rays(t, view, Secondary::mirror), vw, total, all, cone);
     compare((name + " coherent packets").c_str(), t, coherent_packets(t, 500 * scale, 7), 0, total, all, cone);
     compare((name + " adversarial mixed").c_str(), t, adversarial(t, 4000 * scale, 11, false), 0, total, all, cone);
     compare((name + " adversarial by family").c_str(), t, adversarial(t, 4000 * scale, 13, true), 0, total, all, cone);

@@ -1,8 +1,8 @@
 // svo_trace_packet8 / svo_trace_packet16 / svo_trace_packets (raykit/svo_trace_packet.hpp: 8 or 16
 // coherent rays sharing one traversal; 16 on AVX-512 lanes where the CPU has them, else as two 8-ray
 // packets, which must give the same bits) against rk_svo_trace per ray, on camera-tile packets, the
-// shadow rays of a camera's hits (towards a sun, a sun along an axis and a point light, in their
-// pixels' tiles), random coherent packets and adversarial packets (every family of svo_trace_rays.hpp:
+// secondary rays of a camera's hits in their pixels' tiles (shadow rays towards a sun, a sun along
+// an axis and a point light; mirror reflections), random coherent packets and adversarial packets (every family of svo_trace_rays.hpp:
 // axis-parallel, through edges and corners, origins inside and on the lattice, mixed octants, far
 // origins, short t_max)
 // over random trees and voxelised meshes at depths 3, 6, 10 and 16 (and coarse max_level stops).

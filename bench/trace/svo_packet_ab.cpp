@@ -10,17 +10,20 @@
 // per packet.
 // Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key or "all" (default: all)]
 //        [tile width] [tile height] (default: svo_trace_packet_best_tile)
-// RAYKIT_AB_SHADOW=1 traces shadow rays instead: from each primary hit (rk_svo_trace's, the point
-// from rk_svo_hit_point, the start from rk_svo_secondary_origin) towards a directional light of
-// direction normalize(0.4, 0.8, 0.45), in the pixel's place in the image, so a tile's shadow rays are
-// its pixels'; a pixel whose primary ray missed gets a ray that starts beyond the root's far corner
-// and goes the same way (it misses at once, as it would in a renderer that traces every pixel).
+// RAYKIT_AB_RAYS=shadow or =reflection traces secondary rays instead, each in its pixel's place in
+// the image (so a tile's secondary rays are its pixels'), from each primary hit (rk_svo_trace's, the
+// point from rk_svo_hit_point, the start from rk_svo_secondary_origin): shadow rays towards a
+// directional light of direction normalize(0.4, 0.8, 0.45), or mirror reflections about the hit's
+// face normal (rk_svo_interface_at's reflected direction). A pixel whose primary ray missed gets a
+// ray that starts beyond the root's far corner and leaves along (1, 1, 1) (it misses at once, as it
+// would in a renderer that traces every pixel).
 #include <time.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "raykit/svo_build.hpp"
@@ -67,18 +70,26 @@ int main(int argc, char** argv)
         }
         const size_t n = rays.size();
         const size_t width = size_t(s.camera.width);
-        const char* shadow_env = std::getenv("RAYKIT_AB_SHADOW");
-        const bool shadow = shadow_env != nullptr && std::strcmp(shadow_env, "1") == 0;
-        if (shadow) {
+        const char* kind_env = std::getenv("RAYKIT_AB_RAYS");
+        const std::string kind = kind_env != nullptr ? kind_env : "";
+        if (kind == "shadow" || kind == "reflection") {
             const glm::vec3 to_light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f));
-            const glm::vec3 beyond = tree.root_min + glm::vec3(2.0f * tree.root_size);
             for (size_t i = 0; i < n; ++i) {
                 const raykit::rk_svo_trace_hit h =
                     raykit::rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
+                if (!h.hit) {
+                    rays[i].origin = tree.root_min + glm::vec3(2.0f * tree.root_size);
+                    rays[i].dir = glm::normalize(glm::vec3(1.0f));
+                    continue;
+                }
                 const glm::vec3 p = raykit::rk_svo_hit_point(tree, rays[i].origin, rays[i].dir, h);
-                rays[i].origin = h.hit ? raykit::rk_svo_secondary_origin(p, h.normal, to_light, tree, h.level) : beyond;
-                rays[i].dir = to_light;
+                const glm::vec3 d = kind == "shadow" ? to_light : raykit::rk_svo_interface_at(rays[i].dir, h.normal, 1.0f, 1.5f).reflected;
+                rays[i].origin = raykit::rk_svo_secondary_origin(p, h.normal, d, tree, h.level);
+                rays[i].dir = d;
             }
+        } else if (!kind.empty()) {
+            std::printf("RAYKIT_AB_RAYS=%s: expected shadow or reflection\n", kind.c_str());
+            return 1;
         }
         const size_t chunk = 4 * width;
         std::vector<raykit::rk_svo_trace_hit> hits[3];
@@ -135,7 +146,7 @@ int main(int argc, char** argv)
             }
         std::printf("%s%-16s d%d: %zu rays, %ld hit, %ld enter the root (%.1f rk iterations each); packets %ux%u: %ld entering, "
                     "%.1f node expansions each\n",
-                    shadow ? "shadow rays, " : "", s.key.c_str(), depth, n, hit_count, entered, double(it) / double(std::max(entered, 1L)), tw, th, packets,
+                    kind.empty() ? "" : (kind + " rays, ").c_str(), s.key.c_str(), depth, n, hit_count, entered, double(it) / double(std::max(entered, 1L)), tw, th, packets,
                     double(expansions) / double(std::max(packets, 1L)));
         for (int m = 0; m < 3; ++m) {
             std::vector<double> a = vs_rk[m], b = vs_rays[m];

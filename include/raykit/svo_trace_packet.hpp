@@ -34,8 +34,9 @@
 // a 32-ray one as two 16-ray ones, with the same answers. The MSVC path (/arch:AVX2) is written but
 // not compiled yet.
 // Cost: it pays where the rays of a tile stay in the same nodes, i.e. where a pixel's footprint is
-// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); the shadow
-// rays of a tile's hits towards one light, in their pixels' places, share nodes as well; 32-ray
+// not much smaller than a voxel (a pixel cone in a LOD build keeps it so at any depth); the
+// secondary rays of a tile's hits (shadow rays, mirror reflections), in their pixels' places, share
+// nodes as well; 32-ray
 // packets share the levels above the rays' parting, and expand a node on 16 lanes where its rays
 // lie in one half of the packet. Where few
 // rays reach a 4^3 brick, the 16-lane walk finds each one's first voxel among the brick's 64 at
