@@ -1077,20 +1077,25 @@ def volumes_summary(out_dir):
         "scripts/bench_volumes.sh")
 
 def gpu_figures_line(out_dir):
-    """Which pages hold figures from a GPU (those scripts/bench_gpu.sh writes), and that the
-    function micro-benchmarks' CPU times are ratios only."""
-    pages = [(name, page) for name, page in (("interior mapping's frame times", "benchmarks_interior_gpu.md"),
-                                             ("the octree voxel pass", "benchmarks_svo_gl_gpu.md"),
-                                             ("forward against deferred shading", "benchmarks_deferred_gpu.md"),
-                                             ("the volume techniques", "benchmarks_volumes_gpu.md"))
-             if os.path.exists(os.path.join(out_dir, page))]
+    """Which pages hold figures from a GPU (those scripts/bench_gpu.sh writes), which of them this
+    page quotes, and that the function micro-benchmarks' CPU times are ratios only."""
+    known = (("interior mapping's frame times", "benchmarks_interior_gpu.md", True),
+             ("the octree voxel pass", "benchmarks_svo_gl_gpu.md", True),
+             ("forward against deferred shading", "benchmarks_deferred_gpu.md", False),
+             ("the volume techniques", "benchmarks_volumes_gpu.md", False))
+    pages = [(name, page, quoted) for name, page, quoted in known if os.path.exists(os.path.join(out_dir, page))]
     if not pages:
         return "None were recorded yet on a GPU. The CPU times above are ratios only."
-    names = [f"{name} ([{page}]({page}))" for name, page in pages]
-    where = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-    return (f"Recorded on a GPU (its name heads each page): {where}; the first two are quoted in their "
-            "sections above. None yet for the per-function benchmarks on this page, whose CPU times are "
-            "ratios only; what carries over to a GPU:")
+
+    def listing(items):
+        return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+    line = "Recorded on a GPU (its name heads each page): " + listing([f"{n} ([{p}]({p}))" for n, p, _ in pages])
+    quoted = [n for n, _, q in pages if q]
+    if quoted:
+        line += "; " + listing(quoted) + (" are" if len(quoted) > 1 else " is") + " quoted in " + \
+            ("their sections" if len(quoted) > 1 else "its section") + " above"
+    return line + ". None yet for the per-function benchmarks on this page, whose CPU times are ratios only; what carries over to a GPU:"
 
 
 def svo_gl_gpu_summary(out_dir):

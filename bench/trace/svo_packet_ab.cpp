@@ -10,16 +10,15 @@
 // per packet.
 // Usage: raykit_svo_packet_ab [depth (default 10)] [rounds (default 11)] [mesh key or "all" (default: all)]
 //        [tile width] [tile height] (default: svo_trace_packet_best_tile)
-// RAYKIT_AB_RAYS=shadow or =reflection traces secondary rays instead, each in its pixel's place in
-// the image (so a tile's secondary rays are its pixels'), from each primary hit (rk_svo_trace's, the
-// point from rk_svo_hit_point, the start from rk_svo_secondary_origin): shadow rays towards a
-// directional light of direction normalize(0.4, 0.8, 0.45), or mirror reflections about the hit's
-// face normal (rk_svo_interface_at's reflected direction). A pixel whose primary ray missed gets a
-// ray that starts beyond the root's far corner and leaves along (1, 1, 1) (it misses at once, as it
-// would in a renderer that traces every pixel).
+// RAYKIT_AB_RAYS=shadow or =reflection traces the secondary rays of the frame's hits instead, each in
+// its pixel's place (tests/svo_secondary_rays.hpp, as test_svo_trace_packet does): shadow rays
+// towards a directional light of direction normalize(0.4, 0.8, 0.45), or mirror reflections about
+// the hit's face normal. A tile whose rays lie in several direction octants is traced as one packet
+// per octant; its node expansions are their sum.
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -27,9 +26,9 @@
 #include <vector>
 
 #include "raykit/svo_build.hpp"
-#include "raykit/svo_secondary.hpp"
 #include "raykit/svo_trace_packet.hpp"
 #include "raykit/svo_trace_simd.hpp"
+#include "svo_secondary_rays.hpp"
 #include "trace_scene.hpp"
 
 static double cpu_seconds()
@@ -72,22 +71,10 @@ int main(int argc, char** argv)
         const size_t width = size_t(s.camera.width);
         const char* kind_env = std::getenv("RAYKIT_AB_RAYS");
         const std::string kind = kind_env != nullptr ? kind_env : "";
-        if (kind == "shadow" || kind == "reflection") {
-            const glm::vec3 to_light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f));
-            for (size_t i = 0; i < n; ++i) {
-                const raykit::rk_svo_trace_hit h =
-                    raykit::rk_svo_trace(words.data(), tree, rays[i].origin, rays[i].dir, rays[i].t_max, glm::vec2(0.0f));
-                if (!h.hit) {
-                    rays[i].origin = tree.root_min + glm::vec3(2.0f * tree.root_size);
-                    rays[i].dir = glm::normalize(glm::vec3(1.0f));
-                    continue;
-                }
-                const glm::vec3 p = raykit::rk_svo_hit_point(tree, rays[i].origin, rays[i].dir, h);
-                const glm::vec3 d = kind == "shadow" ? to_light : raykit::rk_svo_interface_at(rays[i].dir, h.normal, 1.0f, 1.5f).reflected;
-                rays[i].origin = raykit::rk_svo_secondary_origin(p, h.normal, d, tree, h.level);
-                rays[i].dir = d;
-            }
-        } else if (!kind.empty()) {
+        if (kind == "shadow" || kind == "reflection")
+            rays = svotrace::secondary_rays(words.data(), tree, rays, kind == "shadow" ? svotrace::Secondary::sun : svotrace::Secondary::mirror,
+                                            glm::normalize(glm::vec3(0.4f, 0.8f, 0.45f)));
+        else if (!kind.empty()) {
             std::printf("RAYKIT_AB_RAYS=%s: expected shadow or reflection\n", kind.c_str());
             return 1;
         }
@@ -133,16 +120,23 @@ int main(int argc, char** argv)
             for (int m = 0; m < 3; ++m)
                 differ[m] += (hits[m][i].hit != hits[0][i].hit || (hits[0][i].hit && hits[m][i].cell != hits[0][i].cell)) ? 1 : 0;
         }
-        // Node expansions per packet: the largest `iterations` of the packet's rays.
+        // Node expansions per tile: the largest `iterations` of the rays of each direction octant's
+        // packet (the rays of one octant share a packet), summed over the octants.
         unsigned long long expansions = 0;
         long packets = 0;
         for (size_t y0 = 0; y0 < n / width; y0 += th)
             for (size_t x0 = 0; x0 < width; x0 += tw) {
-                uint32_t mx = 0;
+                uint32_t mx[8] = {0, 0, 0, 0, 0, 0, 0, 0};
                 for (size_t y = y0; y < std::min(n / width, size_t(y0 + th)); ++y)
-                    for (size_t x = x0; x < std::min(width, size_t(x0 + tw)); ++x) mx = std::max(mx, hits[2][y * width + x].iterations);
-                expansions += mx;
-                packets += mx > 0 ? 1 : 0;
+                    for (size_t x = x0; x < std::min(width, size_t(x0 + tw)); ++x) {
+                        const glm::vec3 d = rays[y * width + x].dir;
+                        const int oct = (std::signbit(d.x) ? 0 : 1) | (std::signbit(d.y) ? 0 : 2) | (std::signbit(d.z) ? 0 : 4);  // as the set-up's flip
+                        mx[oct] = std::max(mx[oct], hits[2][y * width + x].iterations);
+                    }
+                uint32_t sum = 0;
+                for (uint32_t m : mx) sum += m;
+                expansions += sum;
+                packets += sum > 0 ? 1 : 0;
             }
         std::printf("%s%-16s d%d: %zu rays, %ld hit, %ld enter the root (%.1f rk iterations each); packets %ux%u: %ld entering, "
                     "%.1f node expansions each\n",

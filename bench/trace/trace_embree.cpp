@@ -107,7 +107,7 @@ Prepared prepare(const Scene& s, int /*depth*/)
 }
 
 // Embree's coherent stream over the span's rows (the harness hands out chunks of whole rows of
-// `width` rays): the rays copied in 4x4 pixel-tile order into one RTCRayHit array, one
+// `width` rays; a partial last row is traced too): the rays copied in 4x4 pixel-tile order into one RTCRayHit array, one
 // rtcIntersect1M, the distances copied back (the copies are timed: an application pays them too).
 Prepared prepare_coherent(const Scene& s, int depth)
 {
@@ -118,14 +118,14 @@ Prepared prepare_coherent(const Scene& s, int depth)
         auto buf = std::make_shared<std::vector<RTCRayHit>>();
         auto at = std::make_shared<std::vector<std::size_t>>();
         return SpanTracer([scene, width, buf, at](const Ray* rays, std::size_t n, float* t) {
-            const std::size_t rows = n / width;
+            const std::size_t rows = (n + width - 1) / width;  // a partial last row too
             buf->resize(n);
             at->resize(n);
             std::size_t c = 0;
             for (std::size_t y0 = 0; y0 < rows; y0 += 4)
                 for (std::size_t x0 = 0; x0 < width; x0 += 4)
                     for (std::size_t y = y0; y < std::min(rows, y0 + 4); ++y)
-                        for (std::size_t x = x0; x < std::min(width, x0 + 4); ++x) {
+                        for (std::size_t x = x0; x < std::min(width, x0 + 4) && y * width + x < n; ++x) {
                             const std::size_t i = y * width + x;
                             ray_hit((*buf)[c], rays[i]);
                             (*at)[c++] = i;
