@@ -24,14 +24,12 @@ enum class Secondary { sun, point, mirror };
 /// light of unit direction `light` (sun) or towards the point `light` (point; t_max its distance),
 /// or the mirror reflection about the hit's face normal (mirror; rk_svo_interface_at's reflected
 /// direction). A missed pixel's ray starts beyond the root's far corner and leaves along (1, 1, 1):
-/// it misses at once, as it would in a renderer that traces every pixel. `hits` (optional) gets
-/// the number of frame rays that hit.
+/// it misses at once, as it would in a renderer that traces every pixel.
 inline std::vector<raykit::SvoRay> secondary_rays(const uint32_t* words, const raykit::rk_svo_tree& tree,
                                                   const std::vector<raykit::SvoRay>& frame, Secondary kind,
-                                                  glm::vec3 light = glm::vec3(0.0f), std::size_t* hits = nullptr)
+                                                  glm::vec3 light = glm::vec3(0.0f))
 {
     std::vector<raykit::SvoRay> out(frame.size());
-    std::size_t n_hit = 0;
     for (std::size_t i = 0; i < frame.size(); ++i) {
         const raykit::SvoRay& r = frame[i];
         const raykit::rk_svo_trace_hit h = raykit::rk_svo_trace(words, tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
@@ -41,7 +39,6 @@ inline std::vector<raykit::SvoRay> secondary_rays(const uint32_t* words, const r
             s.dir = glm::normalize(glm::vec3(1.0f));
             continue;
         }
-        ++n_hit;
         const glm::vec3 p = raykit::rk_svo_hit_point(tree, r.origin, r.dir, h);
         s.dir = kind == Secondary::sun     ? light
                 : kind == Secondary::point ? glm::normalize(light - p)
@@ -49,7 +46,6 @@ inline std::vector<raykit::SvoRay> secondary_rays(const uint32_t* words, const r
         s.origin = raykit::rk_svo_secondary_origin(p, h.normal, s.dir, tree, h.level);
         if (kind == Secondary::point) s.t_max = glm::length(light - s.origin);
     }
-    if (hits != nullptr) *hits = n_hit;
     return out;
 }
 
