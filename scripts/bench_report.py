@@ -1161,38 +1161,27 @@ def svo_trace_summary(out_dir):
             lines = f.read().splitlines()
         table = ["| mesh | Embree Mrays/s | Embree coherent | OpenVDB d10 | raykit d10 | raykit SIMD d10 | raykit packets d10 | best / OpenVDB | best / Embree | best / Embree coherent | 1-px LOD d12 / Embree | 1-px LOD d12 / Embree coherent |",
                  "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-        mesh, e, ec, v, r, rs, rp, rl = None, None, None, None, None, None, None, None
-
-        def flush():
-            if mesh and e and r:
-                best = max([float(r)] + [float(x) for x in (rs, rp) if x])
-                rv = f"{best / float(v):.2f}" if v else "-"
-                lod = f"{float(rl) / float(e):.2f}" if rl else "-"
-                bc = f"{best / float(ec):.2f}" if ec else "-"
-                lodc = f"{float(rl) / float(ec):.2f}" if rl and ec else "-"
-                table.append(f"| {mesh} | {e} | {ec or '-'} | {v or '-'} | {r} | {rs or '-'} | {rp or '-'} | {rv} | {best / float(e):.2f} | {bc} | {lod} | {lodc} |")
-
+        # Per mesh, the single-thread Mrays/s cell of each (row name, depth) of its table.
+        meshes = []
         for l in lines:
             if l.startswith("## "):
-                flush()
-                mesh, e, ec, v, r, rs, rp, rl = l[3:].strip(), None, None, None, None, None, None, None
+                meshes.append((l[3:].strip(), {}))
             cells = [c.strip() for c in l.strip().strip("|").split("|")] if l.startswith("|") else []
-            if len(cells) > 3:
-                if cells[0] == "Embree":
-                    e = cells[2]
-                elif cells[0] == "Embree, coherent":
-                    ec = cells[2]
-                elif cells[0] == "OpenVDB" and cells[1] == "10":
-                    v = cells[2]
-                elif cells[0] == "raykit" and cells[1] == "10":
-                    r = cells[2]
-                elif cells[0] == "raykit SIMD" and cells[1] == "10":
-                    rs = cells[2]
-                elif cells[0] == "raykit packets" and cells[1] == "10":
-                    rp = cells[2]
-                elif cells[0] == "raykit packets, 1-px LOD" and cells[1] == "12":
-                    rl = cells[2]
-        flush()
+            if meshes and len(cells) > 3:
+                meshes[-1][1][(cells[0], cells[1])] = cells[2]
+        for mesh, cell in meshes:
+            e, ec = cell.get(("Embree", "—")), cell.get(("Embree, coherent", "—"))
+            v, r = cell.get(("OpenVDB", "10")), cell.get(("raykit", "10"))
+            rs, rp = cell.get(("raykit SIMD", "10")), cell.get(("raykit packets", "10"))
+            rl = cell.get(("raykit packets, 1-px LOD", "12"))
+            if not (e and r):
+                continue
+            best = max([float(r)] + [float(x) for x in (rs, rp) if x])
+            rv = f"{best / float(v):.2f}" if v else "-"
+            lod = f"{float(rl) / float(e):.2f}" if rl else "-"
+            bc = f"{best / float(ec):.2f}" if ec else "-"
+            lodc = f"{float(rl) / float(ec):.2f}" if rl and ec else "-"
+            table.append(f"| {mesh} | {e} | {ec or '-'} | {v or '-'} | {r} | {rs or '-'} | {rp or '-'} | {rv} | {best / float(e):.2f} | {bc} | {lod} | {lodc} |")
         md.extend(table)
         md.append("")
         md.append("![Mrays/s by depth, single thread](img/bench_trace_mrays.png)")
