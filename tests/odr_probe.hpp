@@ -270,7 +270,7 @@ inline raykit::SvoTree svo_row()
         const glm::vec3 o(-1.0f, 3.5f, 3.5f), d(1.0f, 0.0f, 0.0f);                                                      \
         /* No cone: full detail. A voxel is 3 levels down, one push per level: fewer iterations cannot reach it. */     \
         const rk_svo_trace_hit h0 = rk_svo_trace(words.data(), tree, o, d, 100.0f, glm::vec2(0.0f));                    \
-        const bool reach = RK_SVO_TRAVERSE_MAX_ITER >= 3;                                                               \
+        const bool reach = RK_SVO_TRAVERSE_MAX_ITER == 0 || RK_SVO_TRAVERSE_MAX_ITER >= 3;                               \
         r.push_back({"rk_svo_trace (no cone)", {RK_ODR_MACRO(RK_SVO_TRAVERSE_MAX_ITER)},                                \
                      {h0.hit ? 1.0f : 0.0f, h0.hit ? h0.t : -1.0f, h0.hit ? static_cast<float>(h0.level) : -1.0f},       \
                      {reach ? 1.0f : 0.0f, reach ? 6.0f : -1.0f, reach ? 3.0f : -1.0f}, 1e-5f});                        \

@@ -51,8 +51,9 @@ inline const char* const family_names[] = {
     "far origin",       // 7: origin 1e3..1e5 root sizes away
     "scaled dir",       // 8: |dir| from 1e-30 to 1e30
     "short t_max",      // 9: t_max ends inside the root
+    "aimed at a voxel", // 10: aimed_rays(): through a point inside a listed voxel
 };
-constexpr int family_count = 10;
+constexpr int family_count = 10;  // the families make_rays cycles through (aimed_rays is 10)
 
 /// Distance (world units) of p from the surface of the box [lo, lo + cs]^3: how far outside it is,
 /// or, inside, how far from the nearest face (0 when `inside_ok`: an origin inside a node). How the
@@ -174,6 +175,29 @@ inline std::vector<Ray> make_rays(size_t n, glm::vec3 root_min, float root_size,
         }
         }
         rays.push_back(r);
+    }
+    return rays;
+}
+
+/// `n` rays aimed at random points inside voxels of `cells` (leaf cells of a depth-`depth` tree
+/// in the root [root_min, root_min + root_size]^3): a random ray through a sparse deep tree almost
+/// never hits, these mostly do. Every fifth runs along z (axis-parallel); a third start three
+/// voxels before their target, the rest up to a root size before it. Family 10.
+inline std::vector<Ray> aimed_rays(const std::vector<glm::ivec3>& cells, glm::vec3 root_min, float root_size,
+                                   uint32_t depth, size_t n, uint64_t seed)
+{
+    std::vector<Ray> rays;
+    if (cells.empty()) return rays;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f), S(-1.0f, 1.0f);
+    const float cs = root_size / float(1u << depth);
+    for (size_t i = 0; i < n; ++i) {
+        const glm::ivec3 c = cells[rng() % cells.size()];
+        const glm::vec3 target = root_min + cs * (glm::vec3(c) + glm::vec3(U(rng), U(rng), U(rng)));
+        glm::vec3 dir = glm::normalize(glm::vec3(S(rng), S(rng), S(rng)) + glm::vec3(1e-3f));
+        if (i % 5 == 0) dir = glm::vec3(0.0f, 0.0f, (i & 1) ? 1.0f : -1.0f);
+        const float back = (i % 3 == 0) ? cs * 3.0f : root_size * U(rng);
+        rays.push_back({target - dir * back, dir, std::numeric_limits<float>::max(), 10});
     }
     return rays;
 }

@@ -56,7 +56,7 @@ void compare_rays(const char* what, const raykit::SvoTree& t, const std::vector<
     for (size_t i = 0; i < rays.size(); ++i) {
         tally.iterations += one[i].iterations;
         tally.hits += one[i].hit ? 1 : 0;
-        tally.bound += one[i].iterations >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER) ? 1 : 0;
+        tally.bound += one[i].iterations >= raykit::rk_svo_trace_iteration_bound(tree) ? 1 : 0;
         if (same_hit(simd[i], one[i])) continue;
         if (differ++ == 0)
             ADD_FAILURE() << what << ": ray " << i << " (" << rays[i].origin.x << ", " << rays[i].origin.y << ", "

@@ -109,7 +109,7 @@ void check_ray(const char* what, const svotrace::Ray& ray, const rk_svo_trace_hi
     const double dist = glm::length(o - (rmin + 0.5 * rs)) / rs;
     const double tol = ray_tol(ray, t);
     std::string why;
-    bool ok = std::isfinite(h.t) && h.iterations < uint(RK_SVO_TRAVERSE_MAX_ITER);
+    bool ok = std::isfinite(h.t) && h.iterations < rk_svo_trace_iteration_bound(svo_trace_tree(t));
     if (!ok) why = "non-finite t or iteration bound reached";
     if (ok && h.hit) {
         ++st.hits;
@@ -226,7 +226,8 @@ bool svo_trace_default_build(const SvoTree& t, glm::vec3 origin, glm::vec3 dir, 
 
 TEST(SvoTrace, RandomTreesAgainstDenseDda)
 {
-    // Depths 1..8, sparse to dense, near and forced-far pointers: 40 trees, 25k rays each (10^6).
+    // Depths 1..8, one cell to half full (at most 12,000 cells), near and forced-far pointers: 40
+    // trees, 25k rays each (10^6), a fifth of them aimed at voxels.
     long total = 0;
     uint32_t max_iter = 0;
     for (uint32_t depth = 1; depth <= 8; ++depth) {
@@ -239,16 +240,22 @@ TEST(SvoTrace, RandomTreesAgainstDenseDda)
             SvoTree t = svotest::pack_cells(depth, svotest::random_cells(depth, n, 31 * depth + k), po);
             t.root_min = glm::vec3(-2.0f, 0.5f, 8.0f);
             t.root_size = 4.0f;
-            const auto rays = svotrace::make_rays(25000, t.root_min, t.root_size, depth, 1000 * depth + k);
+            // The adversarial families, and rays aimed at voxels (random rays miss a sparse tree).
+            std::vector<svotrace::Ray> rays = svotrace::make_rays(20000, t.root_min, t.root_size, depth, 1000 * depth + k);
+            std::vector<glm::ivec3> cells;
+            svo_for_each_voxel(t, [&](glm::uvec3 c, uint64_t) { cells.push_back(glm::ivec3(c)); });
+            const auto aimed = svotrace::aimed_rays(cells, t.root_min, t.root_size, depth, 5000, 77 * depth + k);
+            rays.insert(rays.end(), aimed.begin(), aimed.end());
             char what[64];
             std::snprintf(what, sizeof what, "random d%u %zu cells pb%u", depth, n, po.pointer_bits);
             const Stats st = run_dense(what, t, rays);
+            EXPECT_GT(st.hits, 2500) << what;  // at least half the aimed rays
             total += st.rays;
             max_iter = std::max(max_iter, st.max_iter);
         }
     }
     EXPECT_GE(total, 1000000);
-    std::printf("[trace] random trees: %ld rays, max %u iterations (bound %u)\n", total, max_iter, uint(RK_SVO_TRAVERSE_MAX_ITER));
+    std::printf("[trace] random trees: %ld rays, max %u iterations (bound 16 x 2^depth)\n", total, max_iter);
 }
 
 TEST(SvoTrace, VoxelisedMeshesAgainstDenseDda)
@@ -314,17 +321,8 @@ TEST(SvoTrace, Depth16AgainstBruteForce)
         // Rays aimed at voxels (a random ray through a 2^48-cell grid misses a few thousand
         // voxels), plus the adversarial families.
         std::vector<svotrace::Ray> rays = svotrace::make_rays(6000, t.root_min, t.root_size, 16, 5);
-        std::mt19937_64 rng(9);
-        const float cs = t.root_size / 65536.0f;
-        for (int i = 0; i < 6000; ++i) {
-            const glm::ivec3 c = cells[rng() % cells.size()];
-            std::uniform_real_distribution<float> U(0.0f, 1.0f), S(-1.0f, 1.0f);
-            const glm::vec3 target = t.root_min + cs * (glm::vec3(c) + glm::vec3(U(rng), U(rng), U(rng)));
-            glm::vec3 dir = glm::normalize(glm::vec3(S(rng), S(rng), S(rng)) + glm::vec3(1e-3f));
-            if (i % 5 == 0) dir = glm::vec3(0.0f, 0.0f, (i & 1) ? 1.0f : -1.0f);  // axis-parallel at depth 16
-            const float back = (i % 3 == 0) ? cs * 3.0f : t.root_size * U(rng);
-            rays.push_back({target - dir * back, dir, std::numeric_limits<float>::max(), 0});
-        }
+        const std::vector<svotrace::Ray> aimed = svotrace::aimed_rays(cells, t.root_min, t.root_size, 16, 6000, 9);
+        rays.insert(rays.end(), aimed.begin(), aimed.end());
         Stats st;
         for (const svotrace::Ray& r : rays) {
             const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
@@ -367,11 +365,63 @@ TEST(SvoTrace, GrazingRaysStayUnderTheIterationBound)
         const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, o, d, std::numeric_limits<float>::max(), glm::vec2(0.0f));
         worst = std::max(worst, h.iterations);
         hits += h.hit;
-        ASSERT_LT(h.iterations, uint(RK_SVO_TRAVERSE_MAX_ITER)) << "ray " << i;
+        ASSERT_LT(h.iterations, rk_svo_trace_iteration_bound(tree)) << "ray " << i;
     }
     std::printf("[trace] grazing rays over a depth-11 wall: max %u iterations (bound %u), %ld hits\n", worst,
-                uint(RK_SVO_TRAVERSE_MAX_ITER), hits);
-    EXPECT_GT(worst, 500u);  // they are the expensive case the bound must cover
+                rk_svo_trace_iteration_bound(tree), hits);
+    EXPECT_GT(worst, 2000u * 3u);  // about 4 per leaf cell along the diagonal: the expensive case
+}
+
+TEST(SvoTrace, GrazingRaysAtDepth16AgainstBruteForce)
+{
+    // A strip of wall at depth 16 (2^16 cells long, 2 wide), rays sliding just above it along its
+    // length: 2 iterations per leaf cell, 131,000 in all, eight times a fixed bound of 16,384 (which
+    // left holes from depth 14). The default bound, 16 x 2^depth, must let every one finish, and its
+    // hits must be the brute force's.
+    SvoBuildOptions opt;
+    opt.depth = 16;
+    opt.attributes = 0;
+    opt.fixed_bounds = true;
+    opt.bounds_min = glm::vec3(-1.0f);
+    opt.bounds_size = 2.0f;
+    const double cell = 2.0 / 65536.0;
+    const SvoMeshData strip = rkmesh::axis_quad(2, 0.0, glm::dvec2(-1.0, -cell), glm::dvec2(1.0, cell));
+    SvoTree t;
+    SvoStatus s;
+    ASSERT_TRUE(build_svo(strip.view(), opt, t, s)) << s.message;
+    const rk_svo_tree tree = svo_trace_tree(t);
+    EXPECT_EQ(rk_svo_trace_iteration_bound(tree), 16u << 16u);
+    const std::vector<uint32_t> words = t.gpu_words();
+    std::vector<glm::ivec3> cells;
+    svo_for_each_voxel(t, [&](glm::uvec3 c, uint64_t) { cells.push_back(glm::ivec3(c)); });
+    ASSERT_GT(cells.size(), 65536u * 2u);
+    Stats st;
+    uint32_t worst = 0;
+    const float fc = float(cell);
+    for (int i = 0; i < 160; ++i) {
+        // Just above the strip's top (z = cell), sinking by 0 to ~2 cells over its length, so that
+        // some rays land far along it and the rest pass over all of it; some run along x exactly.
+        const float z = fc * (1.0f + 0.002f * float(i % 5));
+        const float sink = (i % 4 == 0) ? 0.0f : -fc * 0.5f * float(i % 8) / 2.5f;
+        const glm::vec3 o(-1.25f, fc * (float(i % 7) - 3.0f) * 0.3f, z);
+        const glm::vec3 d(1.0f, (i % 3 == 0) ? 0.0f : 1e-7f * float(i % 5), sink);
+        const svotrace::Ray r{o, d, std::numeric_limits<float>::max(), 0};
+        const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, o, d, r.t_max, glm::vec2(0.0f));
+        worst = std::max(worst, h.iterations);
+        const rkref::DdaHit ref =
+            rkref::brute_first_hit(cells, 16, glm::dvec3(t.root_min), double(t.root_size), to_ref(r),
+                                   4.0 * ray_tol(r, t) * double(t.root_size), ray_tol(r, t) * double(t.root_size));
+        check_ray("strip d16", r, h, ref, t, 16, [&](glm::uvec3 c) {
+            return std::find(cells.begin(), cells.end(), glm::ivec3(c)) != cells.end();
+        }, st);
+    }
+    report("grazing strip d16", st);
+    std::printf("[trace] grazing rays over a depth-16 strip: max %u iterations (bound %u)\n", worst,
+                rk_svo_trace_iteration_bound(tree));
+    EXPECT_EQ(st.bad, 0);
+    EXPECT_GT(worst, 100000u);  // the long slides the old fixed bound cut short
+    EXPECT_GT(st.hits, 40);
+    EXPECT_LT(st.hits, 150);  // and rays that pass over the whole strip
 }
 
 TEST(SvoTrace, NoNanForHostileInputs)
@@ -394,7 +444,7 @@ TEST(SvoTrace, NoNanForHostileInputs)
                         ASSERT_TRUE(std::isfinite(h.t) && std::isfinite(h.normal.x) && std::isfinite(h.normal.y) &&
                                     std::isfinite(h.normal.z))
                             << ox << " " << oy << " " << dx << " " << dy << " " << tm;
-                        ASSERT_LT(h.iterations, uint(RK_SVO_TRAVERSE_MAX_ITER));
+                        ASSERT_LT(h.iterations, rk_svo_trace_iteration_bound(tree));
                         if (tm < 0.0f) {
                             ASSERT_FALSE(h.hit);
                         }
@@ -421,6 +471,6 @@ TEST(SvoTrace, ShaderDefaultsMatchTheHeader)
     ss << f.rdbuf();
     const std::string src = ss.str();
     EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_LOD 0\n"), std::string::npos);
-    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_MAX_ITER 16384\n"), std::string::npos);
-    static_assert(RK_SVO_TRAVERSE_LOD == 0 && RK_SVO_TRAVERSE_MAX_ITER == 16384, "this translation unit uses the defaults");
+    EXPECT_NE(src.find("#define RK_SVO_TRAVERSE_MAX_ITER 0\n"), std::string::npos);
+    static_assert(RK_SVO_TRAVERSE_LOD == 0 && RK_SVO_TRAVERSE_MAX_ITER == 0, "this translation unit uses the defaults");
 }

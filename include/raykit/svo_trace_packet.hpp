@@ -20,12 +20,12 @@
 // near-parallel components, where rk_svo_trace's "never backwards" clamp acts): both answers are
 // then accepted by the float64 dense-grid DDA (tests/test_svo_trace_packet.cpp). `iterations` is
 // the number of nodes the packet expanded until that ray was answered, not rk_svo_trace's count, so
-// where rk_svo_trace stops at RK_SVO_TRAVERSE_MAX_ITER and reports a miss (a lowered bound, or a
-// very long grazing path through a deep tree) a packet may still find the hit. Bit for bit only without
+// where rk_svo_trace stops at its iteration bound and reports a miss (a fixed
+// RK_SVO_TRAVERSE_MAX_ITER cap) a packet may still find the hit. Bit for bit only without
 // fused multiply-adds: x86-64's default target or -ffp-contract=off (an FMA target such as
 // -march=native contracts rk_svo_trace's planes, not the AVX-512 walk's). Rays of different
 // octants in one packet are traced as one packet per octant. A packet that expands more than
-// RK_SVO_TRAVERSE_MAX_ITER nodes hands its remaining rays to rk_svo_trace. In a
+// rk_svo_trace_iteration_bound(tree) nodes hands its remaining rays to rk_svo_trace. In a
 // LOD build (RK_SVO_TRAVERSE_LOD=1) each lane tests rk_svo_trace's footprint stop on the children
 // it enters; a ray stopped at a child is answered when the walk reaches that child (front to back),
 // or at once, at the first child it enters, when its footprint is a child wide at the node's entry.

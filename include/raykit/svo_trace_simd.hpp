@@ -211,7 +211,7 @@ struct Batch {
     glm::vec2 cone;
     rk_svo_trace_hit* hits;
     bool sub_masks;  // brick levels b == 2: a brick's sub-node mask is its non-zero bytes
-    __m256i top, leaf, desc_words;
+    __m256i top, leaf, desc_words, bound;  // bound: rk_svo_trace_iteration_bound
 #if RK_SVO_TRAVERSE_LOD
     __m256 lod_bias, lod_slope;
 #endif
@@ -396,7 +396,7 @@ RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
                                                                                                              _mm256_or_si256(found, leave), _mm256_and_si256(act, one)));
     _mm256_store_si256(reinterpret_cast<__m256i*>(g.L.iter), iter);
     const unsigned bound_bits = static_cast<unsigned>(_mm256_movemask_ps(
-        _mm256_castsi256_ps(_mm256_and_si256(act, _mm256_cmpeq_epi32(iter, _mm256_set1_epi32(RK_SVO_TRAVERSE_MAX_ITER))))));
+        _mm256_castsi256_ps(_mm256_and_si256(act, _mm256_cmpeq_epi32(iter, k.bound)))));
     for (unsigned m = (found_bits | leave_bits | bound_bits) & g.active; m != 0u; m &= m - 1u) {
         const int i = lowest_bit(m);
         lane_out(g.L, i, g.st[i]);
@@ -423,6 +423,7 @@ RK_SVO_RAYS_TARGET inline void trace_lanes(const uint32_t* words, const rk_svo_t
     c.top = _mm256_set1_epi32(static_cast<int>(tree.depth - b));
     c.leaf = _mm256_set1_epi32(static_cast<int>(tree.max_level < tree.depth ? tree.max_level : tree.depth));
     c.desc_words = _mm256_set1_epi32(static_cast<int>(tree.desc_words));
+    c.bound = _mm256_set1_epi32(static_cast<int>(rk_svo_trace_iteration_bound(tree)));
 #if RK_SVO_TRAVERSE_LOD
     c.lod_bias = _mm256_set1_ps(glm::max(cone.x, 0.0f) * (1.0f / tree.root_size));
     c.lod_slope = _mm256_set1_ps(glm::max(cone.y, 0.0f));

@@ -15,7 +15,7 @@
 #define RK_SVO_TRAVERSE_LOD 0
 #endif
 #ifndef RK_SVO_TRAVERSE_MAX_ITER
-#define RK_SVO_TRAVERSE_MAX_ITER 16384
+#define RK_SVO_TRAVERSE_MAX_ITER 0
 #endif
 
 #define RK_SVO_TRAVERSE_NS_CAT_(lod, it) svo_traverse_lod##lod##_iter##it

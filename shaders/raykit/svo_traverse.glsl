@@ -25,14 +25,18 @@
 //   RK_SVO_TRAVERSE_LOD (default 0): 1 = stop at the first non-empty node whose edge is no larger than
 //       the ray's footprint cone.x + cone.y * distance (object units; rk_svo_pixel_cone gives the
 //       cone of a pixel). 0 = the cone is ignored and costs nothing.
-//   RK_SVO_TRAVERSE_MAX_ITER (default 16384, a plain integer): the hard bound on loop iterations. One iteration is one
-//       push, advance or pop. Primary rays take ~13 on average at depth 10; the costliest rays
-//       slide just above a flat surface (~4 per leaf cell crossed: 8,174 at depth 11, 16,382 at
-//       depth 13), so the default suffices up to depth 13; raise it for deeper trees seen at
-//       grazing angles. A ray that reaches the bound reports no hit with iterations equal to it.
-//       The value must be a plain literal (it is pasted into the C++ namespace name).
+//   RK_SVO_TRAVERSE_MAX_ITER (default 0, a plain integer): the hard bound on loop iterations (one
+//       iteration is one push, advance or pop; rk_svo_trace_iteration_bound). 0 = derived from the
+//       tree: 16 x 2^depth, more than any ray through a valid tree takes (it enters at most
+//       3 x 2^L - 2 cells of each level L, each once, and pops at most once per node entered:
+//       under 12 x 2^depth iterations), so no ray reaches it. A positive value is a fixed cap
+//       instead (a latency budget): a ray that reaches it reports no hit with iterations equal to
+//       it. Primary rays take ~13 on average at depth 10; the costliest rays slide just above a
+//       flat surface: ~2 per leaf cell along an axis, ~4 along a diagonal (8,174 at depth 11,
+//       ~131,000 along an axis at depth 16). The value must be a plain literal (it is pasted into
+//       the C++ namespace name).
 //
-// @rk-variants RK_SVO_TRAVERSE_LOD=0 | RK_SVO_TRAVERSE_LOD=1 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRAVERSE_MAX_ITER=64
+// @rk-variants RK_SVO_TRAVERSE_LOD=0 | RK_SVO_TRAVERSE_LOD=1 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_BUFFER_TEXTURE=1 | RK_SVO_TRAVERSE_MAX_ITER=64 | RK_SVO_TRAVERSE_LOD=1 RK_SVO_TRAVERSE_MAX_ITER=4096
 // @rk-es 310
 // @rk-es300 RK_SVO_BUFFER_TEXTURE=1
 #ifndef RK_SVO_TRAVERSE_GLSL
@@ -49,10 +53,10 @@
 #endif
 RK_OPTION_CHECK(rk_option_svo_traverse_lod, RK_SVO_TRAVERSE_LOD);
 #ifndef RK_SVO_TRAVERSE_MAX_ITER
-#define RK_SVO_TRAVERSE_MAX_ITER 16384
+#define RK_SVO_TRAVERSE_MAX_ITER 0
 #endif
-#if RK_SVO_TRAVERSE_MAX_ITER < 1 || RK_SVO_TRAVERSE_MAX_ITER > 16777216
-#error "RK_SVO_TRAVERSE_MAX_ITER must be in 1..2^24"
+#if RK_SVO_TRAVERSE_MAX_ITER < 0 || RK_SVO_TRAVERSE_MAX_ITER > 16777216
+#error "RK_SVO_TRAVERSE_MAX_ITER must be 0 (derived from the tree's depth) or in 1..2^24"
 #endif
 RK_OPTION_CHECK(rk_option_svo_traverse_max_iter, RK_SVO_TRAVERSE_MAX_ITER);
 
@@ -316,6 +320,14 @@ RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_tra
     h.normal = rk_svo_trace_entry_normal_((s.pos + vec3(s.size)) * s.coef - s.bias, s.u);  // entry planes of the cell
 }
 
+/// rk_svo_trace_iteration_bound: the bound on rk_svo_trace's loop iterations for `tree`:
+/// RK_SVO_TRAVERSE_MAX_ITER, or where that is 0 (the default) 16 x 2^depth (depth clamped to
+/// RK_SVO_MAX_DEPTH), which no ray through a valid tree reaches. Exact. Cost: 1 min, 1 shift.
+RK_INLINE uint rk_svo_trace_iteration_bound(rk_svo_tree tree)
+{
+    return RK_SVO_TRAVERSE_MAX_ITER > 0 ? uint(RK_SVO_TRAVERSE_MAX_ITER) : (16u << min(tree.depth, RK_SVO_MAX_DEPTH));
+}
+
 /// rk_svo_trace: casts the ray origin + t * dir, t in [0, t_max], through `tree` and returns the
 /// first non-empty voxel (or level-of-detail node) it enters.
 /// Domain: finite origin and dir (dir may have zero or tiny components; a dir below 1.2e-38 in
@@ -327,7 +339,7 @@ RK_INLINE void rk_svo_trace_finish_(RK_SVO_BUF buf, rk_svo_tree tree, rk_svo_tra
 /// see above) can move the ray by up to a voxel over the root.
 /// Cost: per iteration ~30 ALU and at most one word load (a descriptor on push or pop, a far slot,
 /// 2 words for a brick); a brick's 4^3 voxels cost no further load. Loop bounded by
-/// RK_SVO_TRAVERSE_MAX_ITER. No attribute is read (rk_svo_trace_attr gives their index).
+/// rk_svo_trace_iteration_bound. No attribute is read (rk_svo_trace_attr gives their index).
 RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin, vec3 dir, float t_max, vec2 cone)
 {
     rk_svo_trace_hit h;
@@ -339,7 +351,8 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
 
     uint iter = 0u;
     bool found = false;
-    for (; iter < uint(RK_SVO_TRAVERSE_MAX_ITER); ++iter) {
+    uint bound = rk_svo_trace_iteration_bound(tree);
+    for (; iter < bound; ++iter) {
         uint lc = uint(23 - s.scale);  // level of the current cell
         vec3 tc = s.pos * s.coef - s.bias;  // exit planes of the current cell
         float tc_max = min(min(tc.x, tc.y), tc.z);

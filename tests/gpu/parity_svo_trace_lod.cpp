@@ -31,6 +31,6 @@ TEST(GpuParity, SvoTraceLevelOfDetail)
         const auto gpu = svotrace_gpu::gpu_trace(t, tree, rays, true, cone, false);
         char what[64];
         std::snprintf(what, sizeof what, "LOD figure d10, %g px cone (%ld coarse)", px, coarse);
-        svotrace_gpu::compare(what, rays, gpu, cpu, t.root_min, t.root_size, 2e-6);
+        svotrace_gpu::compare(what, rays, gpu, cpu, t.root_min, t.root_size, 2e-6, 3000);
     }
 }

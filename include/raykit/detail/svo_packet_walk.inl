@@ -156,6 +156,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
     stack[sp++] = root;
     unsigned active = lanes;
     uint32_t iter = 0u;
+    const uint32_t iter_bound = rk_svo_trace_iteration_bound(tree);  // node expansions before handing over
     alignas(64) float lo_out[L::N];
     alignas(64) int32_t k_out[L::N];
     alignas(64) float nx[L::N], ny[L::N], nz[L::N];  // hits' face normals (L::entry_normal)
@@ -198,7 +199,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
             if (R == 0u) continue;
         }
 #endif
-        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+        if (iter >= iter_bound) {
             bounded = true;
             break;
         }
@@ -246,7 +247,7 @@ RK_SVO_PW_TARGET inline unsigned RK_SVO_PW_NAME(const uint32_t* words, const rk_
                     for (uint32_t rest = cm; rest != 0u;) {
                         const int k = highest_bit(rest);
                         rest &= ~(1u << k);
-                        if (iter >= uint32_t(RK_SVO_TRAVERSE_MAX_ITER)) {
+                        if (iter >= iter_bound) {
                             bounded = true;
                             break;
                         }
