@@ -1,8 +1,9 @@
 // rk_svo_trace (shaders/raykit/svo_traverse.glsl, C++ build) against the float64 brute-force
 // references of tests/reference/svo_dda_ref.hpp (a dense-grid DDA and a voxel-list slab test,
 // written apart from the traversal): over 10^6 rays of every adversarial family of
-// svo_trace_rays.hpp on random trees (depths 1..8, far pointers), voxelised meshes (surface and
-// solid, a mesh far from the origin) and depth-16 trees, each hit must be
+// svo_trace_rays.hpp and rays aimed at voxels on random trees (depths 1..8, far pointers),
+// voxelised meshes (surface and solid, a mesh far from the origin), depth-16 trees and grazing
+// rays over a depth-16 strip, each hit must be
 //   - an occupied voxel (or non-empty node at max_level) that the exact ray touches,
 //   - entered where the exact ray enters it: the hit point on the node's surface within kTol root
 //     sizes (plus 8 float ULPs of the origin's distance for far origins: its rounding and t's),
@@ -10,12 +11,14 @@
 //     voxels) and no earlier than the first voxel it touches,
 // a miss is allowed only when the exact ray passes through no voxel by more than kTol, the face
 // normal is the entry face, the attribute index is the builder's, and the iteration bound is
-// never reached. The LOD build is tested in parts/test_svo_traverse/lod.cpp, linked into this same
-// executable with RK_SVO_TRAVERSE_LOD=1.
+// never reached. rk_svo_trace must also read no attribute word (ReadsNoAttributeWords). The LOD
+// build is tested in parts/test_svo_traverse/lod.cpp, linked into this same executable with
+// RK_SVO_TRAVERSE_LOD=1.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -459,6 +462,37 @@ TEST(SvoTrace, NoNanForHostileInputs)
     EXPECT_FALSE(rk_svo_trace(words.data(), bad, glm::vec3(-5.0f), glm::vec3(1.0f), big, glm::vec2(0.0f)).hit);
     std::printf("[trace] %ld hostile inputs, %ld hits, all outputs finite\n", n, hits);
     EXPECT_GT(hits, 0);
+}
+
+TEST(SvoTrace, ReadsNoAttributeWords)
+{
+    // rk_svo_trace reads geometry only: with every brick_base word (where attribute indices come
+    // from) overwritten, each field of each answer is the same, while rk_svo_trace_attr, which
+    // reads them, changes. (The attribute streams themselves are other buffers it never sees.)
+    SvoTree t;
+    std::string why;
+    ASSERT_TRUE(svotrace::build_colour_tree(rkmesh::figure(), 9, SvoFill::surface, t, why)) << why;
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const std::vector<uint32_t> words = t.gpu_words();
+    std::vector<uint32_t> poisoned = words;
+    ASSERT_LT(tree.brick_base_word, poisoned.size());
+    for (size_t i = tree.brick_base_word; i < poisoned.size(); ++i) poisoned[i] = 0x7F00FF00u ^ uint32_t(i * 2654435761u);
+    long hits = 0, attr_changed = 0;
+    for (const svotrace::Ray& r : svotrace::make_rays(20000, t.root_min, t.root_size, t.depth, 41)) {
+        const rk_svo_trace_hit a = rk_svo_trace(words.data(), tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
+        const rk_svo_trace_hit b = rk_svo_trace(poisoned.data(), tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
+        ASSERT_EQ(a.hit, b.hit);
+        ASSERT_EQ(std::memcmp(&a.t, &b.t, sizeof a.t), 0);
+        ASSERT_TRUE(a.level == b.level && a.cell == b.cell && a.normal == b.normal && a.node == b.node &&
+                    a.brick_bit == b.brick_bit && a.brick_mask == b.brick_mask && a.iterations == b.iterations);
+        if (!a.hit) continue;
+        ++hits;
+        attr_changed += rk_svo_trace_attr(words.data(), tree, a) != rk_svo_trace_attr(poisoned.data(), tree, b);
+    }
+    std::printf("[trace] brick_base words overwritten: %ld hits, all answers the same; %ld attribute indices changed\n",
+                hits, attr_changed);
+    EXPECT_GT(hits, 2000);
+    EXPECT_GT(attr_changed, hits / 2);
 }
 
 TEST(SvoTrace, ShaderDefaultsMatchTheHeader)

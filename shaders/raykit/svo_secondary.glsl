@@ -32,7 +32,7 @@
 //   RK_SVO_SECONDARY_ABSORPTION (default 1): 0 drops the Beer–Lambert transmittance (no exp per voxel).
 //   RK_SVO_SECONDARY_MAX_STEPS (default 4096, a plain integer): bound on the voxels one rk_svo_march crosses.
 //
-// @rk-variants RK_SVO_SECONDARY_FRESNEL_FAST=1 | RK_SVO_SECONDARY_ABSORPTION=0 | RK_SVO_SECONDARY_FRESNEL_FAST=1 RK_SVO_SECONDARY_MAX_STEPS=64
+// @rk-variants RK_SVO_SECONDARY_FRESNEL_FAST=1 | RK_SVO_SECONDARY_ABSORPTION=0 | RK_SVO_SECONDARY_FRESNEL_FAST=1 RK_SVO_SECONDARY_MAX_STEPS=64 | RK_SVO_BUFFER_TEXTURE=1 RK_SVO_MEDIUM(m,a)=vec4(1.5,0.0,0.0,0.0) RK_SVO_INTERFACE_NORMAL(m,a,n)=normalize((n)+vec3(0.0,1e-3,0.0))
 // @rk-es 310
 #ifndef RK_SVO_SECONDARY_GLSL
 #define RK_SVO_SECONDARY_GLSL

@@ -6,7 +6,8 @@
 //   - its parent was not small enough to stop at (the footprint grows along the ray, so the
 //     parent, entered no later, had a footprint no larger);
 //   - it is entered no later than the first voxel the exact ray passes through (a coarse node
-//     contains its voxels), and where the exact ray enters it (hit point on its surface).
+//     contains its voxels), and where the exact ray enters it (hit point on its surface within
+//     2e-6 root sizes, plus 8 ULPs of a far origin's distance).
 #define RK_SVO_TRAVERSE_LOD 1
 #include <gtest/gtest.h>
 
@@ -44,6 +45,7 @@ TEST(SvoTraceLod, StopsAtTheFootprintAndAgreesWithTheOracle)
     for (float px : {0.5f, 4.0f, 32.0f}) {
         const glm::vec2 cone = rk_svo_pixel_cone(1.0471976f, 512.0f, px);
         long coarse = 0, bad = 0, other_coarse = 0;
+        double worst_off = 0.0;
         for (const svotrace::Ray& r : rays) {
             const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, r.origin, r.dir, r.t_max, cone);
             uint32_t level0 = 0;
@@ -75,6 +77,13 @@ TEST(SvoTraceLod, StopsAtTheFootprintAndAgreesWithTheOracle)
                     parent_too_big = 2.0 * cs > (double(cone.x) + double(cone.y) * tp * glm::length(d)) * (1.0 - 1e-4) - 1e-6 * rs;
             }
             bool ok = occupied && (h.level == t.depth || cs <= foot * (1.0 + 1e-4) + 1e-6 * rs) && parent_too_big;
+            // Entered where the exact ray enters it: the hit point on the node's surface (anywhere
+            // inside it for an origin inside, t = 0).
+            const glm::dvec3 lo = glm::dvec3(t.root_min) + cs * glm::dvec3(h.cell);
+            const glm::dvec3 p = glm::dvec3(r.origin) + double(h.t) * d;
+            const double off = svotrace::surface_distance(p, lo, cs, h.t == 0.0f) / rs;
+            if (far_tol < 8.0 * 0x1p-24 * 10.0) worst_off = std::max(worst_off, off);  // (origins within 10 root sizes)
+            ok = ok && off <= 2e-6 + far_tol;
             // No later than the first voxel the exact ray passes through, unless that voxel is
             // inside the node hit (then the node's own entry is what counts, checked by parity).
             const int sh = int(t.depth - h.level);
@@ -92,8 +101,8 @@ TEST(SvoTraceLod, StopsAtTheFootprintAndAgreesWithTheOracle)
                 ++bad;
             }
         }
-        std::printf("[trace] LOD %4.1f px cone: %zu rays, %ld stopped above the voxels, %ld failures\n", px, rays.size(),
-                    coarse, bad);
+        std::printf("[trace] LOD %4.1f px cone: %zu rays, %ld stopped above the voxels, %ld failures, worst hit-point "
+                    "offset %.2e root (origins within 10 root sizes)\n", px, rays.size(), coarse, bad, worst_off);
         EXPECT_EQ(bad, 0);
         EXPECT_GT(coarse, 1000);
         EXPECT_EQ(other_coarse, 0) << "the RK_SVO_TRAVERSE_LOD=0 build ignores the cone";
