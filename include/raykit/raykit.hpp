@@ -30,6 +30,7 @@
 #include "raykit/status.hpp"
 #include "raykit/ssao.hpp"
 #include "raykit/svo_build.hpp"
+#include "raykit/svo_features.hpp"
 #include "raykit/svo_file.hpp"
 #include "raykit/svo_format.hpp"
 #include "raykit/svo_hybrid.hpp"

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "raykit/shader_source.hpp"
+#include "raykit/svo_features.hpp"
 #include "raykit/svo_format.hpp"
 #include "raykit/svo_hybrid.hpp"
 #include "raykit/svo_secondary.hpp"
@@ -40,10 +41,11 @@ struct SvoDrawParams {
     bool secondary = false;        ///< materials: shadows, mirror reflection, refraction (needs a tree with materials)
 };
 
-/// The fragment shader of the voxel pass. RK_SVO_TRAVERSE_LOD and RK_SVO_PASS_SECONDARY (shadows,
-/// mirror reflection and refraction through svo_secondary.glsl, for trees with materials: a
-/// material with reflectance > 0 is a mirror, one with base_color.a < 1 is transparent and
-/// refracts with its ior and absorption) are set per program.
+/// The fragment shader of the voxel pass. Its feature macros are set per program, from
+/// raykit::svo_defines (svo_features.hpp): RK_SVO_TRAVERSE_LOD, and three passes through
+/// svo_secondary.glsl, each compiled out when 0 (the default): RK_SVO_PASS_SHADOWS (shadow rays
+/// towards the light), RK_SVO_PASS_REFLECTION (a material with reflectance > 0 is a mirror) and
+/// RK_SVO_PASS_REFRACTION (a material with base_color.a < 1 refracts with its ior and absorption).
 inline std::string svo_fragment_source()
 {
     return R"(#version 450 core
@@ -64,7 +66,17 @@ layout(location = 8) uniform uvec2 u_streams;   // has colours, has normals
 layout(location = 9) uniform vec4 u_ambient;    // rgb, show iterations
 layout(binding = 0) uniform sampler2D u_depth_tex;
 layout(location = 0) out vec4 frag;
-#if RK_SVO_PASS_SECONDARY
+#ifndef RK_SVO_PASS_SHADOWS
+#define RK_SVO_PASS_SHADOWS 0
+#endif
+#ifndef RK_SVO_PASS_REFLECTION
+#define RK_SVO_PASS_REFLECTION 0
+#endif
+#ifndef RK_SVO_PASS_REFRACTION
+#define RK_SVO_PASS_REFRACTION 0
+#endif
+#define RK_SVO_PASS_BOUNCE (RK_SVO_PASS_REFLECTION || RK_SVO_PASS_REFRACTION)
+#if RK_SVO_PASS_SHADOWS || RK_SVO_PASS_BOUNCE
 // Refract at the stored smooth normals (a voxelised sphere then bends light like a ball, not like a
 // staircase of cube faces); the face where no normal is stored.
 #define RK_SVO_INTERFACE_NORMAL(media, attr, face_n) (u_streams.y != 0u ? rk_svo_unpack_normal(rk_normals[attr]) : (face_n))
@@ -86,7 +98,7 @@ vec3 rk_pass_local(rk_svo_tree tree, vec3 p, vec3 d, rk_svo_trace_hit h, uint a,
     vec3 albedo = u_streams.x != 0u ? rk_svo_unpack_color(rk_colors[a]).rgb : vec3(0.8);
     vec3 n = rk_pass_normal(a, h, d);
     float diff = max(dot(n, u_light_obj), 0.0);
-#if RK_SVO_PASS_SECONDARY
+#if RK_SVO_PASS_SHADOWS
     // Shadow ray from one voxel along the smooth normal: on a curved voxel surface the cube faces
     // of the neighbouring voxels would otherwise shadow each other (Wilks's self-shadowing
     // artefacts); the face-offset rk_svo_shadowed is exact for flat voxel geometry.
@@ -98,7 +110,7 @@ vec3 rk_pass_local(rk_svo_tree tree, vec3 p, vec3 d, rk_svo_trace_hit h, uint a,
     return albedo * (u_ambient.rgb + (1.0 - u_ambient.rgb) * diff);
 }
 
-#if RK_SVO_PASS_SECONDARY
+#if RK_SVO_PASS_BOUNCE
 // Per material: x = mirror reflectance, y = opacity (alpha; < 1 refracts).
 layout(std430, binding = 8) readonly buffer RkSurface { vec4 rk_surface[]; };
 
@@ -124,19 +136,25 @@ vec3 rk_pass_secondary(rk_svo_tree tree, vec3 o, vec3 dir, rk_svo_trace_hit h)
     uint mat = rk_svo_material_ids[a];
     vec4 surf = rk_surface[mat];
     vec3 col = local;
+#if RK_SVO_PASS_REFRACTION
     if (surf.y < 1.0) {
         // Refractive: Fresnel reflection plus what leaves the object(s), absorbed on the way.
         rk_svo_refraction r = rk_svo_refract_through(0u, tree, 0u, o, d, 1.0, 6u);
         vec3 refl = rk_pass_radiance(tree, r.reflect_origin, r.reflect_dir);
         vec3 through = rk_pass_radiance(tree, r.origin, r.dir);  // (an incomplete path goes on from where it stopped)
         col = r.reflectance * refl + (1.0 - r.reflectance) * surf.y * local + (1.0 - surf.y) * r.transmittance * through;
-    } else if (surf.x > 0.0) {
+        return col;
+    }
+#endif
+#if RK_SVO_PASS_REFLECTION
+    if (surf.x > 0.0) {
         // Mirror about the stored smooth normal (the cube faces of a tilted voxel plane would
         // reflect in stripes).
         vec3 rd = reflect(d, rk_pass_normal(a, h, d));
         vec3 refl = rk_pass_radiance(tree, rk_svo_secondary_origin(p, h.normal, rd, tree, h.level), rd);
         col = mix(local, refl, surf.x);
     }
+#endif
     return col;
 }
 #endif
@@ -161,10 +179,10 @@ void main()
     }
     if (!h.hit) discard;
     gl_FragDepth = rk_svo_window_depth(u_obj_to_clip, o + d * h.t, vec2(u_depth.y, u_depth.z));
-#if RK_SVO_PASS_SECONDARY
+#if RK_SVO_PASS_BOUNCE
     frag = vec4(rk_pass_secondary(tree, o, d, h), 1.0);
 #else
-    frag = vec4(rk_pass_local(tree, o + d * h.t, d, h, rk_svo_trace_attr(0u, tree, h), false), 1.0);
+    frag = vec4(rk_pass_local(tree, o + d * h.t, d, h, rk_svo_trace_attr(0u, tree, h), RK_SVO_PASS_SHADOWS != 0), 1.0);
 #endif
 }
 )";
@@ -306,12 +324,16 @@ public:
         const uint32_t zero = 0;
         colors_ = tree.color.empty() ? make_buffer(4, &zero) : make_buffer(tree.color.size() * 4, tree.color.data());
         normals_ = tree.normal.empty() ? make_buffer(4, &zero) : make_buffer(tree.normal.size() * 4, tree.normal.data());
-        // Programs: 0 plain, 1 LOD, 2 secondary rays (only for trees with materials).
+        // Programs: 0 plain, 1 LOD, 2 secondary rays (only for trees with materials: shadows, and
+        // reflection and refraction where the materials have them).
         for (int k = 0; k < 3; ++k) {
             if (k == 2 && tree.material.empty()) break;
-            const std::string fs = resolved_shader(
-                svo_fragment_source(), "svo_pass.frag", shader_dir, {shader_dir},
-                {{"RK_SVO_TRAVERSE_LOD", k == 1 ? "1" : "0"}, {"RK_SVO_PASS_SECONDARY", k == 2 ? "1" : "0"}});
+            raykit::SvoSceneDesc scene;
+            scene.lod = k == 1;
+            scene.shadows = k == 2;
+            const std::vector<raykit::SvoMaterial> none;
+            const std::string fs = resolved_shader(svo_fragment_source(), "svo_pass.frag", shader_dir, {shader_dir},
+                                                   raykit::svo_defines(scene, k == 2 ? tree.materials : none));
             prog_[k] = build_program({{GL_VERTEX_SHADER, fullscreen_vertex_source()}, {GL_FRAGMENT_SHADER, fs}});
         }
         if (!tree.material.empty()) {
