@@ -215,8 +215,8 @@ struct rk_svo_march_result {
     vec3 dir;             ///< the direction after refracting out (unit)
     vec3 transmittance;   ///< Beer–Lambert absorption along the path times (1 - R) at every refraction
     float path;           ///< object-space length travelled inside
-    uint steps;           ///< voxels crossed
-    uint interfaces;      ///< refractions and internal reflections on the way (exit included)
+    uint steps;           ///< cells crossed (the look-ahead's included)
+    uint interfaces;      ///< refractions, internal reflections and re-entries on the way (exits included)
 };
 
 /// rk_svo_march: follows a ray through the occupied voxels of the leaf level, from `p` (on or just
@@ -225,6 +225,10 @@ struct rk_svo_march_result {
 /// medium of index `n_out`. Each voxel is a medium (RK_SVO_MEDIUM); where the index changes the ray
 /// refracts at the face crossed (or reflects totally); on the way out it refracts into n_out, or
 /// reflects back in under TIR and goes on. Absorption is integrated exactly per voxel segment.
+/// After leaving, the walk looks three cells further (every cell the ray crosses within a voxel of
+/// its exit): where it meets an occupied voxel there, the ray refracts back in and the march goes
+/// on, so a staircase re-entry a fraction of a voxel after an exit is followed exactly (a
+/// restarted trace's offset could step past it). The result describes the last exit.
 /// Cost per voxel: one rk_svo_lookup (<= depth + 3 loads), 1 exp (with absorption), ~40 flops.
 /// Precision: positions are held in voxel units of the whole grid (float spacing 2^(depth-24)
 /// voxel), so media are for trees up to depth ~16 (1/256 voxel); deeper ones drift.
@@ -254,6 +258,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
 #if RK_SVO_SECONDARY_HOOKED_NORMAL_
     cur_attr = rk_svo_lookup(buf, tree.desc_words, tree.brick_base_word, tree.depth, cell, tree.depth).attr;
 #endif
+    uint ahead = 0u;  // empty cells walked since the last exit (0: inside the medium)
     for (uint it = 0u; it < uint(RK_SVO_SECONDARY_MAX_STEPS); ++it) {
         // Distance (voxel units) to the cell's exit plane on each axis.
         vec3 lo = vec3(c);
@@ -262,12 +267,14 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         float tz = dir.z > 0.0f ? (lo.z + 1.0f - q.z) / dir.z : (dir.z < 0.0f ? (lo.z - q.z) / dir.z : RK_FLT_MAX);
         float t = max(min(tx, min(ty, tz)), 0.0f);
         uint ax = tx <= ty && tx <= tz ? 0u : (ty <= tz ? 1u : 2u);
-        // Through this voxel's medium.
-        float seg = t * voxel;
-        r.path += seg;
+        // Through this voxel's medium (an empty cell of the look-ahead has none).
+        if (ahead == 0u) {
+            float seg = t * voxel;
+            r.path += seg;
 #if RK_SVO_SECONDARY_ABSORPTION
-        r.transmittance *= exp(-absorb * seg);
+            r.transmittance *= exp(-absorb * seg);
 #endif
+        }
         q = q + dir * t;
         ivec3 stp = ivec3(ax == 0u ? (dir.x > 0.0f ? 1 : -1) : 0, ax == 1u ? (dir.y > 0.0f ? 1 : -1) : 0,
                            ax == 2u ? (dir.z > 0.0f ? 1 : -1) : 0);
@@ -294,7 +301,9 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
             }
         }
         r.steps = it + 1u;
-        if (n_next != n_cur) {
+        // An interface where the index changes, and at every re-entry from the look-ahead (an entry
+        // counts even into a medium of index n_out, as rk_svo_refract_through counts it).
+        if (n_next != n_cur || (occupied && ahead > 0u)) {
             // The surface belongs to the denser side's voxel: the one entered, or the one left.
             vec3 nrm = RK_SVO_INTERFACE_NORMAL_(media, n_next > n_cur ? next_attr : cur_attr, face_out);
             rk_svo_interface f = rk_svo_interface_at(dir, nrm, n_cur, n_next);
@@ -311,16 +320,27 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
             dir = rk_svo_safe_normalize(f.transmitted, dir);
         }
         if (!occupied) {
-            r.left = true;
-            r.exit_point = tree.root_min + q * voxel;
-            r.exit_normal = face_out;
-            r.dir = dir;
-            return r;
+            if (ahead == 0u) {  // the exit, unless the look-ahead finds a re-entry
+                r.exit_point = tree.root_min + q * voxel;
+                r.exit_normal = face_out;
+                r.dir = dir;
+            }
+            ahead += 1u;
+            if (ahead >= 3u || !inside_root) {
+                r.left = true;
+                return r;
+            }
+        } else {
+            ahead = 0u;
         }
         c = nc;
         n_cur = n_next;
         absorb = absorb_next;
         cur_attr = next_attr;
+    }
+    if (ahead > 0u) {  // the bound came during the look-ahead: the ray had left
+        r.left = true;
+        return r;
     }
     r.exit_point = tree.root_min + q * voxel;
     r.dir = dir;
@@ -329,7 +349,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
 
 /// What a ray does after passing through refractive voxel objects (rk_svo_refract_through).
 struct rk_svo_refraction {
-    bool hit;             ///< the ray met the octree at all
+    bool hit;             ///< the ray met the octree (false for max_surfaces 0: nothing is traced)
     float reflectance;    ///< Fresnel reflectance at the first surface (for the caller's reflection ray)
     vec3 reflect_origin;  ///< that reflection ray
     vec3 reflect_dir;
@@ -344,7 +364,8 @@ struct rk_svo_refraction {
 /// rk_svo_refract_through: follows the refracted path of a ray through every refractive object it
 /// meets, up to `max_surfaces` entries (recursion bounded by a parameter; GLSL has none): trace to
 /// the next voxel surface, refract in (reflect under TIR), march through the medium (rk_svo_march),
-/// refract out, repeat. It traces at full detail whatever tree.max_level says (the march starts in
+/// refract out, repeat. A re-entry the march follows within a voxel of an exit continues that
+/// entry's leg (no new trace, not counted against max_surfaces). It traces at full detail whatever tree.max_level says (the march starts in
 /// the hit voxel; a LOD build's cone is not used). The reflection at the first surface is returned for the caller to trace
 /// (rk_svo_trace) and weigh by `reflectance`. Media with index == n_outside are transparent
 /// (a hollow core and a core of index n_outside give the same path: Wilks's test). Cost: one
@@ -397,7 +418,8 @@ RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree t
         }
         // Leave along the ray itself (no sideways shift, so a path through empty space between two
         // media follows the same line as one through voxels of index n_outside): far enough to be
-        // the secondary offset off the exit face, at most 8 offsets along the ray.
+        // the secondary offset off the exit face, at most 8 offsets (1/8 voxel) along the ray, whose
+        // cells the march's look-ahead has found empty.
         float off = max(rk_svo_voxel_size(tree, tree.depth) * 0.015625f, tree.root_size * 4.76837158e-7f);
         r.origin = mr.exit_point + r.dir * (off / max(dot(r.dir, mr.exit_normal), 0.125f));
     }
