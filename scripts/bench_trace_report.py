@@ -94,7 +94,10 @@ def main():
         "`RTC_INTERSECT_CONTEXT_FLAG_COHERENT` (it forms ray packets inside); the fastest Embree form "
         "measured for these frames (bench/trace/trace_embree.cpp lists the others), and the peer of "
         "raykit's packets.\n"
-        "- **OpenVDB**: `LevelSetRayIntersector` on `meshToLevelSet` at the same voxel size (half-width 3).\n")
+        "- **OpenVDB**: `LevelSetRayIntersector` on `meshToLevelSet` at the same voxel size (half-width 3). "
+        "The default run stops its rows at depth 10 (the sponge's at 9): its level sets at depths 11 and 12 "
+        "take 0.2-3.7 GB and 3-68 s to build; `RAYKIT_BENCH_TRACE_FULL=1` adds them (measured apart in "
+        "docs/svo-traverse.md, *Cost*).\n")
     out.append(
         "Issue 11's goals on a 2-core machine, single thread: **at least 5x OpenVDB** and **at least "
         "Embree's speed** (reference figures: Embree 10.5 Mrays/s on a 5,856-triangle mesh, 7.5 on a "
