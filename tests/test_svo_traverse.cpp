@@ -464,6 +464,39 @@ TEST(SvoTrace, NoNanForHostileInputs)
     EXPECT_GT(hits, 0);
 }
 
+TEST(SvoTrace, StopsSoonAfterTMax)
+{
+    // A ray whose t_max ends before its voxel (early termination against a depth buffer, a shadow
+    // ray to a point light) misses, and stops within a few iterations of passing t_max instead of
+    // walking on to the root's exit: it walks the full ray's path up to t_max, then at most 3
+    // advances to its parent's exit, where the t_max test stops it (the full ray may have found its
+    // voxel 1 iteration after that point). So at most 2 iterations more than the full ray.
+    SvoTree t;
+    std::string why;
+    ASSERT_TRUE(svotrace::build_colour_tree(rkmesh::torus(48, 24), 9, SvoFill::surface, t, why)) << why;
+    const rk_svo_tree tree = svo_trace_tree(t);
+    const std::vector<uint32_t> words = t.gpu_words();
+    long rays = 0, worst_extra = -1000;
+    double full = 0.0, early = 0.0;
+    for (const svotrace::Ray& r : svotrace::make_rays(20000, t.root_min, t.root_size, t.depth, 8)) {
+        const rk_svo_trace_hit h = rk_svo_trace(words.data(), tree, r.origin, r.dir, r.t_max, glm::vec2(0.0f));
+        if (!h.hit || !(h.t > 0.0f) || r.family == 9) continue;
+        for (float f : {0.25f, 0.9f, 0.999f}) {
+            const rk_svo_trace_hit e = rk_svo_trace(words.data(), tree, r.origin, r.dir, h.t * f, glm::vec2(0.0f));
+            if (e.hit) continue;  // (a lattice tie may still enter the voxel's face before t_max)
+            ++rays;
+            worst_extra = std::max(worst_extra, long(e.iterations) - long(h.iterations));
+            full += h.iterations;
+            early += e.iterations;
+        }
+    }
+    std::printf("[trace] t_max before the hit: %ld rays, %.0f%% of the full rays' iterations, at most %ld more than the "
+                "full ray\n", rays, 100.0 * early / full, worst_extra);
+    EXPECT_GT(rays, 5000);
+    EXPECT_LE(worst_extra, 2);
+    EXPECT_LT(early, 0.9 * full);
+}
+
 TEST(SvoTrace, ReadsNoAttributeWords)
 {
     // rk_svo_trace reads geometry only: with every brick_base word (where attribute indices come

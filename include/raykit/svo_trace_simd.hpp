@@ -78,7 +78,7 @@ struct alignas(32) Lanes {
     float px[kLanes], py[kLanes], pz[kLanes];
     float cx[kLanes], cy[kLanes], cz[kLanes];
     float bx[kLanes], by[kLanes], bz[kLanes];
-    float size[kLanes], t_min[kLanes], t_hi[kLanes], t_enter[kLanes];
+    float size[kLanes], t_min[kLanes], t_hi[kLanes], t_end[kLanes], t_enter[kLanes];
     int32_t flip[kLanes], scale[kLanes], idx[kLanes], iter[kLanes];
     uint32_t handle[kLanes], pdesc[kLanes], bmx[kLanes], bmy[kLanes], bsub[kLanes], brick[kLanes], pmask[kLanes];
     // One row more than the levels: the lanes that do not push write there (no branch per lane).
@@ -99,6 +99,7 @@ inline void lane_in(Lanes& L, int i, const rk_svo_trace_state_& s)
     L.bz[i] = s.bias.z;
     L.size[i] = s.size;
     L.t_min[i] = s.t_min;
+    L.t_end[i] = s.t_end;
     L.t_hi[i] = s.t_hi;
     L.t_enter[i] = s.t_enter;
     L.flip[i] = static_cast<int32_t>(s.flip);
@@ -353,7 +354,10 @@ RK_SVO_RAYS_TARGET RK_SVO_RAYS_FORCE_INLINE void step(Batch& k, Group& g)
     const __m256i msb =
         _mm256_sub_epi32(_mm256_srli_epi32(bits(_mm256_cvtepi32_ps(_mm256_andnot_si256(big, diff))), 23), _mm256_set1_epi32(127));
     const __m256i below_leaf = _mm256_cmpgt_epi32(_mm256_sub_epi32(_mm256_set1_epi32(23), leaf), msb);
-    const __m256i leave = _mm256_and_si256(pop, _mm256_or_si256(big, below_leaf));
+    // Leaving at a pop: past t_max or the root's exit (rk_svo_trace's t_end test), out of the root,
+    // or below the leaf level.
+    const __m256i past_end = cmask(_mm256_cmp_ps(t_min_adv, _mm256_load_ps(g.L.t_end), _CMP_GT_OQ));
+    const __m256i leave = _mm256_and_si256(pop, _mm256_or_si256(past_end, _mm256_or_si256(big, below_leaf)));
     const __m256i popped = _mm256_andnot_si256(leave, pop);
     const __m256 size_pop = flt(_mm256_slli_epi32(_mm256_add_epi32(msb, _mm256_set1_epi32(104)), 23));
     const __m256i lpp = _mm256_sub_epi32(_mm256_set1_epi32(22), msb);

@@ -148,6 +148,7 @@ struct rk_svo_trace_state_ {
     float t_scale;  // caller distance per cube-space distance
     float t_min;    // the ray's current position (cube space, from the entry point)
     float t_hi;     // where it leaves the current parent (or t_max)
+    float t_end;    // where it leaves the root, or t_max: nothing beyond can be hit
     uint top;       // levels above the bricks
     uint leaf;      // deepest level descended to
     uint b;         // brick levels
@@ -231,6 +232,7 @@ RK_INLINE bool rk_svo_trace_begin_(RK_SVO_BUF buf, rk_svo_tree tree, vec3 origin
     float t_min = max(max(max(2.0f * coef.x - bias.x, 2.0f * coef.y - bias.y), 2.0f * coef.z - bias.z), 0.0f);
     s.t_min = t_min;
     s.t_hi = min(min(min(coef.x - bias.x, coef.y - bias.y), coef.z - bias.z), t_lim);
+    s.t_end = s.t_hi;
 
     s.b = rk_svo_brick_levels(tree.depth);
     s.top = tree.depth - s.b;
@@ -408,7 +410,10 @@ RK_INLINE rk_svo_trace_hit rk_svo_trace(RK_SVO_BUF buf, rk_svo_tree tree, vec3 o
         s.t_min = max(s.t_min, tc_max);
         s.idx ^= stp;
         if ((s.idx & stp) != 0u) {
-            // Left the parent: pop to the level of the highest differing address bit.
+            // Left the parent. Past t_max (or the root's exit) nothing more can be entered: stop
+            // rather than pop and walk on to the root's exit.
+            if (s.t_min > s.t_end) break;
+            // Pop to the level of the highest differing address bit.
             uint diff = 0u;
             if ((stp & 1u) != 0u) diff |= floatBitsToUint(s.pos.x) ^ floatBitsToUint(s.pos.x + s.size);
             if ((stp & 2u) != 0u) diff |= floatBitsToUint(s.pos.y) ^ floatBitsToUint(s.pos.y + s.size);
