@@ -15,6 +15,9 @@
 // towards a directional light of direction normalize(0.4, 0.8, 0.45), or mirror reflections about
 // the hit's face normal. A tile whose rays lie in several direction octants is traced as one packet
 // per octant; its node expansions are their sum.
+// RAYKIT_AB_WARM=1 also times the packets with each 4-row chunk traced twice in a row (median of
+// the rounds): the second pass finds the chunk's nodes in cache, so cold / warm bounds what any
+// node layout could win back from memory.
 #include <time.h>
 
 #include <algorithm>
@@ -150,6 +153,29 @@ int main(int argc, char** argv)
                         "%ld rays differ\n",
                         names[m], double(n) / best[m] / 1e6, reps, a[a.size() / 2], a.front(), a.back(), b[b.size() / 2], b.front(),
                         b.back(), differ[m]);
+        }
+        const char* warm_env = std::getenv("RAYKIT_AB_WARM");
+        if (warm_env != nullptr && std::strcmp(warm_env, "1") == 0) {
+            // Per round: the frame once (each chunk once), then each chunk twice in a row; the
+            // second pass's time is the difference.
+            std::vector<double> once, twice;
+            raykit::rk_svo_trace_hit* out = hits[2].data();
+            for (int rep = 0; rep < reps; ++rep)
+                for (int k = 1; k <= 2; ++k) {
+                    const double t0 = cpu_seconds();
+                    for (size_t c = 0; c < n; c += chunk) {
+                        const size_t e = std::min(n, c + chunk);
+                        for (int pass = 0; pass < k; ++pass)
+                            raykit::svo_trace_packets(words.data(), tree, rays.data() + c, e - c, width, out + c, tw, th);
+                    }
+                    (k == 1 ? once : twice).push_back(cpu_seconds() - t0);
+                }
+            std::sort(once.begin(), once.end());
+            std::sort(twice.begin(), twice.end());
+            const double cold = once[once.size() / 2], warm = twice[twice.size() / 2] - cold;
+            std::printf("  packets, each chunk twice in a row: %.1f MB of geometry, first pass %.1f ms, second %.1f ms: cold / "
+                        "warm x%.2f\n",
+                        double(words.size()) * 4e-6, cold * 1e3, warm * 1e3, cold / std::max(warm, 1e-9));
         }
         std::fflush(stdout);
     }
