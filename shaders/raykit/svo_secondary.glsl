@@ -357,19 +357,21 @@ struct rk_svo_refraction {
     vec3 dir;
     vec3 transmittance;   ///< product of (1 - R) at every surface crossed and the absorption inside
     uint interfaces;      ///< surfaces crossed (entries, internal changes, exits)
-    bool complete;        ///< true: the ray left every object (the path is final); false: the march's
-                          ///< step bound stopped it inside, or max_surfaces ran out (more may follow)
+    bool complete;        ///< true: the ray left every object and meets no other (the path is final);
+                          ///< false: the march's step bound stopped it inside, or max_surfaces ran out
+                          ///< with another object ahead (origin and dir: where it stopped)
 };
 
 /// rk_svo_refract_through: follows the refracted path of a ray through every refractive object it
 /// meets, up to `max_surfaces` entries (recursion bounded by a parameter; GLSL has none): trace to
 /// the next voxel surface, refract in (reflect under TIR), march through the medium (rk_svo_march),
 /// refract out, repeat. A re-entry the march follows within a voxel of an exit continues that
-/// entry's leg (no new trace, not counted against max_surfaces). It traces at full detail whatever tree.max_level says (the march starts in
-/// the hit voxel; a LOD build's cone is not used). The reflection at the first surface is returned for the caller to trace
-/// (rk_svo_trace) and weigh by `reflectance`. Media with index == n_outside are transparent
-/// (a hollow core and a core of index n_outside give the same path: Wilks's test). Cost: one
-/// rk_svo_trace per surface entered, one lookup per voxel crossed inside.
+/// entry's leg (no new trace, not counted against max_surfaces). It traces at full detail whatever
+/// tree.max_level says (the march starts in the hit voxel; a LOD build's cone is not used). The
+/// reflection at the first surface is returned for the caller to trace (rk_svo_trace) and weigh by
+/// `reflectance`. Media with index == n_outside are transparent (a hollow core and a core of index
+/// n_outside give the same path: Wilks's test). Cost: one rk_svo_trace per surface entered, one
+/// lookup per voxel crossed inside, and one more trace where max_surfaces runs out.
 RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree tree, RK_SVO_MEDIA media, vec3 origin, vec3 dir,
                                                    float n_outside, uint max_surfaces)
 {
@@ -423,7 +425,8 @@ RK_INLINE rk_svo_refraction rk_svo_refract_through(RK_SVO_BUF buf, rk_svo_tree t
         float off = max(rk_svo_voxel_size(tree, tree.depth) * 0.015625f, tree.root_size * 4.76837158e-7f);
         r.origin = mr.exit_point + r.dir * (off / max(dot(r.dir, mr.exit_normal), 0.125f));
     }
-    r.complete = false;
+    // The budget ran out: the path is final only if nothing lies ahead (one geometry-only trace).
+    r.complete = !rk_svo_trace(buf, tree, r.origin, r.dir, RK_FLT_MAX, vec2(0.0f)).hit;
     return r;
 }
 

@@ -23,10 +23,8 @@
 //     cell after an exit (the cells the ray crosses within a voxel of the exit, which the shader's
 //     march looks at before it gives the ray back) is an interface but not a new entry.
 //   - At most max_surfaces entries: an entry that would exceed them is not made and the trace
-//     stops, incomplete, with the last exit as the leaving ray. The contract's `complete` is false
-//     whenever the budget is spent (its "max_surfaces ran out (more may follow)"): complete means
-//     the ray escaped the grid after FEWER than max_surfaces entries. `more_follow` tells whether
-//     another entry really follows when the budget stopped it.
+//     stops, incomplete, with the last exit as the leaving ray (`more_follow`). `complete` means
+//     the ray escaped the grid: no further entry lies ahead, whatever the budget.
 //
 // Honesty (ties). The exact path can pass arbitrarily close to a cell edge or corner, where the
 // order in which two faces are crossed decides the outcome, or refract arbitrarily close to the
@@ -109,7 +107,7 @@ struct MediaTrace {
     glm::dvec3 transmittance{1.0};     ///< product of (1 - R) at refractions and the absorption
     unsigned interfaces = 0;           ///< entries + refractions + internal reflections + exits
     unsigned entries = 0, exits = 0;
-    bool complete = true;              ///< escaped after fewer than max_surfaces entries
+    bool complete = true;              ///< escaped the grid: no further entry ahead
     bool more_follow = false;          ///< stopped by the budget with another entry ahead
     bool stuck = false;                ///< max_steps reached (never in a sane world)
     double path_inside = 0.0;          ///< length travelled through occupied cells
@@ -182,7 +180,7 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
             for (int a = 0; a < 3; ++a)
                 away = away || (C[a] < 0 && D[a] <= 0.0) || (C[a] >= side && D[a] >= 0.0);
             if (away) {
-                r.complete = r.entries < max_surfaces;
+                r.complete = true;  // nothing more ahead
                 return r;
             }
         }
