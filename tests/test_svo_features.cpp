@@ -1,7 +1,8 @@
 // svo_features.hpp: the feature macros an octree scene needs. svo_material_needs against materials
-// built by hand for each case (a mirror, clear glass, absorbing glass, an opaque material whose
-// absorption is never seen); svo_defines' whole table for several scenes, written out here, not
-// generated; bad input gives an empty set and a message.
+// built by hand for each case (a mirror, clear glass, absorbing glass, an absorbing opaque material
+// alone, where no ray marches, and beside clear glass, whose refracted rays march through it);
+// svo_defines' whole table for several scenes, written out here, not generated; bad input gives an
+// empty set and a message.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,7 +52,8 @@ TEST(SvoFeatures, MaterialNeeds)
     const Case cases[] = {
         {{}, false, false, false},
         {{opaque()}, false, false, false},
-        {{opaque_absorbing}, false, false, false},  // absorption inside an opaque material is never seen
+        {{opaque_absorbing}, false, false, false},  // nothing refracts: no ray marches through it
+        {{glass(glm::vec3(0.0f)), opaque_absorbing}, false, true, true},  // refracted rays march into it
         {{mirror()}, true, false, false},
         {{glass(glm::vec3(0.0f))}, false, true, false},
         {{glass(glm::vec3(0.0f, 0.0f, 0.3f))}, false, true, true},

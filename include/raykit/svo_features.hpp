@@ -30,8 +30,9 @@ struct SvoSceneDesc {
 };
 
 /// What a set of materials needs: a mirror (reflectance > 0), a transparent material
-/// (base_color.a < 1: refracts with its ior), and one that absorbs (a transparent material with an
-/// absorption component > 0; absorption in an opaque material is never seen).
+/// (base_color.a < 1: refracts with its ior), and absorption: some material with an absorption
+/// component > 0 where something refracts (a refracted ray marches through every voxel it meets,
+/// an opaque one touching the glass included; without refraction no ray marches).
 struct SvoMaterialNeeds {
     bool reflection = false;
     bool refraction = false;
@@ -42,12 +43,13 @@ struct SvoMaterialNeeds {
 inline SvoMaterialNeeds svo_material_needs(const std::vector<SvoMaterial>& materials)
 {
     SvoMaterialNeeds n;
+    bool absorbs = false;
     for (const SvoMaterial& m : materials) {
         n.reflection = n.reflection || m.reflectance > 0.0f;
-        const bool transparent = m.base_color.a < 1.0f;
-        n.refraction = n.refraction || transparent;
-        n.absorption = n.absorption || (transparent && (m.absorption.x > 0.0f || m.absorption.y > 0.0f || m.absorption.z > 0.0f));
+        n.refraction = n.refraction || m.base_color.a < 1.0f;
+        absorbs = absorbs || m.absorption.x > 0.0f || m.absorption.y > 0.0f || m.absorption.z > 0.0f;
     }
+    n.absorption = n.refraction && absorbs;
     return n;
 }
 

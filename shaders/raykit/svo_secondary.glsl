@@ -305,7 +305,8 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
         // counts even into a medium of index n_out, as rk_svo_refract_through counts it).
         if (n_next != n_cur || (occupied && ahead > 0u)) {
             // The surface belongs to the denser side's voxel: the one entered, or the one left.
-            vec3 nrm = RK_SVO_INTERFACE_NORMAL_(media, n_next > n_cur ? next_attr : cur_attr, face_out);
+            // (At a re-entry from the look-ahead the entered voxel is the only one at the face.)
+            vec3 nrm = RK_SVO_INTERFACE_NORMAL_(media, (n_next > n_cur || ahead > 0u) ? next_attr : cur_attr, face_out);
             rk_svo_interface f = rk_svo_interface_at(dir, nrm, n_cur, n_next);
             // A substituted (smooth) normal may send the reflected ray on across this face or the
             // refracted one back: then the face itself decides (no zero-length ping-pong).
@@ -313,7 +314,15 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
                 f = rk_svo_interface_at(dir, face_out, n_cur, n_next);
             r.interfaces += 1u;
             if (f.tir) {
-                dir = f.reflected;  // stays in this voxel, now heading back
+                dir = f.reflected;  // stays in this cell, now heading back
+                if (ahead > 0u) {
+                    // Reflected off an object met in the look-ahead (a medium less dense than
+                    // n_out): the ray now leaves from that face, and the look-ahead starts again.
+                    r.exit_point = tree.root_min + q * voxel;
+                    r.exit_normal = -face_out;
+                    r.dir = dir;
+                    ahead = 1u;
+                }
                 continue;
             }
             r.transmittance *= 1.0f - f.reflectance;  // the transmitted share of the Fresnel split
@@ -349,7 +358,7 @@ RK_INLINE rk_svo_march_result rk_svo_march(RK_SVO_BUF buf, rk_svo_tree tree, RK_
 
 /// What a ray does after passing through refractive voxel objects (rk_svo_refract_through).
 struct rk_svo_refraction {
-    bool hit;             ///< the ray met the octree (false for max_surfaces 0: nothing is traced)
+    bool hit;             ///< the ray met the octree (false for max_surfaces 0: no object is entered)
     float reflectance;    ///< Fresnel reflectance at the first surface (for the caller's reflection ray)
     vec3 reflect_origin;  ///< that reflection ray
     vec3 reflect_dir;

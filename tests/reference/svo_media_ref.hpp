@@ -34,17 +34,11 @@
 //                    surrounding cells' media depend on more than one axis (an edge where only one
 //                    axis matters, e.g. inside a flat wall, is no ambiguity);
 //   critical_margin  the smallest |cos^2 theta_t| (= |1 - eta^2 sin^2 theta_i|) at an interface;
-//   reentry_gap      the shortest length along the ray between an exit and the next entry;
-//   restart_margin   how far the closest re-entry lies beyond the reach of a tracer that restarts
-//                    each leg past an exit (as svo_secondary.glsl does: restart_offset = 1/64 voxel
-//                    off the exit face, at most restart_reach = 1/8 voxel along the ray): the
-//                    minimum over re-entries of max(gap - restart_reach, clearance - restart_offset),
-//                    clearance = gap * |cos| = the re-entry's distance from the exit face's plane.
-//                    Negative: such a tracer starts past the re-entry face (it cannot see it as
-//                    this tracer does);
 //   min_cos_i        the most grazing incidence at any interface.
-// A test flags a ray as a tie (edge_margin, critical_margin) or as a re-entry within a restart's
-// reach (restart_margin) when the margin is below its epsilon, and leaves it out (counted).
+// A test flags a ray as a tie (edge_margin, critical_margin) when the margin is below its epsilon,
+// and leaves it out (counted). (A new entry after an exit lies at least a voxel along the ray: the
+// entries before that continue the leg, above. So a tracer that restarts a leg less than a voxel
+// past an exit, as the shader does, cannot step past one; nothing needs flagging for that.)
 #pragma once
 
 #include <algorithm>
@@ -90,8 +84,6 @@ struct MediaEvent {
 struct MediaTraceOptions {
     double edge_window = 0.05;               ///< edge/corner distances at or above this are not examined
     long max_steps = 1L << 22;               ///< cells visited, a guard
-    double restart_offset = 1.0 / 64.0;      ///< see restart_margin
-    double restart_reach = 1.0 / 8.0;
     int lookahead_cells = 3;                 ///< an entry into cells 2..this after an exit continues the leg
     std::vector<MediaEvent>* events = nullptr;  ///< optional event log (appended to)
 };
@@ -113,8 +105,6 @@ struct MediaTrace {
     double path_inside = 0.0;          ///< length travelled through occupied cells
     double edge_margin = std::numeric_limits<double>::infinity();
     double critical_margin = std::numeric_limits<double>::infinity();
-    double reentry_gap = std::numeric_limits<double>::infinity();
-    double restart_margin = std::numeric_limits<double>::infinity();
     double min_cos_i = std::numeric_limits<double>::infinity();
 };
 
@@ -171,8 +161,6 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
     ivec3 C(int(std::floor(S.x)), int(std::floor(S.y)), int(std::floor(S.z)));
     bool inside = false;
     VoxelMedium cur;
-    double gap = 0.0;       // length along the ray since the last exit
-    double exit_cos = 1.0;  // |cos| of the leaving ray to the last exit face
     int cells_out = 0;      // empty cells since the last exit, the one it led into included
     for (long step = 0; step < opt.max_steps; ++step) {
         if (!inside) {
@@ -203,8 +191,6 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
         if (inside) {
             r.transmittance *= glm::exp(-cur.absorb * t);
             r.path_inside += t;
-        } else {
-            gap += t;
         }
         ivec3 N = C;
         N[a] += D[a] > 0.0 ? 1 : -1;
@@ -270,10 +256,6 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
                 r.more_follow = true;
                 return r;
             }
-            if (r.exits > 0 && !continues) {
-                r.reentry_gap = std::min(r.reentry_gap, gap);
-                r.restart_margin = std::min(r.restart_margin, std::max(gap - opt.restart_reach, gap * exit_cos - opt.restart_offset));
-            }
             const VoxelMedium m = medium(N);
             if (!continues) ++r.entries;
             ++r.interfaces;
@@ -292,8 +274,13 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
                 r.entry_point = X;
             }
             D = Din;
-            if (!refracted) {  // mirrored: stays in the empty cell
+            if (!refracted) {  // mirrored: stays in the empty cell, leaving from this face
                 log(MediaEvent::entry_reflection, C, N, a, X);
+                r.exit_point = X;
+                r.dir = D;
+                // Off a re-entry the leg goes on (the next cells are looked at again); off an
+                // entry the next object is a new entry.
+                cells_out = continues ? 1 : opt.lookahead_cells;
                 continue;
             }
             r.transmittance *= 1.0 - R;
@@ -322,8 +309,6 @@ MediaTrace trace_voxel_media(int side, Occupied occupied, Medium medium, double 
             ++r.exits;
             r.exit_point = X;
             r.dir = D;
-            gap = 0.0;
-            exit_cos = std::abs(D[a]);
             cells_out = 1;
             log(MediaEvent::exit, C, N, a, X);
             C = N;

@@ -3,14 +3,15 @@
 // and against closed forms:
 //   - Wilks's sphere (index 1.5, radius 26, hollow core of radius 13), clear, absorbing, and with the
 //     core filled with index 1.0: every ray that is not a tie (an edge, corner or critical angle
-//     within float32's reach) leaves as the float64 tracer says; ties are counted and bounded, and
-//     no entry lies within the reach of the library's restart after an exit;
+//     within float32's reach) leaves as the float64 tracer says; ties are counted and bounded;
 //   - a stack of three slabs (1.33, 1.5, 2.4): Snell's law, parallel exit, lateral displacement
 //     sum t_i tan(theta_i), transmittance prod (1 - R_k) exp(-sum a_i t_i / cos(theta_i));
 //   - a hollow cube shell crossed through its z faces only: the same closed form with 4 interfaces;
 //   - max_surfaces bounds the number of objects entered, and `complete` tells whether another
 //     object lies ahead when it ran out;
-//   - the first surface's mirror direction and Fresnel reflectance.
+//   - the first surface's mirror direction and Fresnel reflectance;
+//   - total internal reflection off a voxel met just after an exit (a medium less dense than the
+//     outside) leaves the reflected ray from that face.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -170,9 +171,6 @@ constexpr double kEdgeEps = 5e-4;
 constexpr double kCritEps = 1e-4;
 
 bool is_tie(const rkref::MediaTrace& r) { return r.edge_margin < kEdgeEps || r.critical_margin < kCritEps; }
-/// A re-entry within the library's restart reach (1/64 voxel off the exit face, at most 1/8 along
-/// the ray): the library starts that leg past (or on) the re-entry face, by its own design.
-bool in_restart_window(const rkref::MediaTrace& r) { return r.restart_margin < kEdgeEps; }
 
 /// The sphere worlds of Wilks's test: depth 6, root [0, 64]^3, a ball of radius 26 voxels about
 /// (32, 32, 32) whose core (radius 13) is empty.
@@ -253,10 +251,9 @@ TEST(SvoSecondary, HollowSphereMatchesFloat64Tracer)
     int total_out_of_surfaces = 0;
     for (const Variant& v : variants) {
         std::mt19937 rng(3);
-        int hits = 0, through_core = 0, out_of_surfaces = 0, ties = 0, tie_disagree = 0, window = 0, window_disagree = 0,
-            window_gross = 0, compared = 0, mismatches = 0;
+        int hits = 0, through_core = 0, out_of_surfaces = 0, ties = 0, tie_disagree = 0, compared = 0, mismatches = 0;
         Agreement worst;
-        double worst_window_line = 0.0, worst_trans_off_critical = 0.0;
+        double worst_trans_off_critical = 0.0;
         std::vector<rkref::MediaEvent> events;
         for (int i = 0; i < kRays; ++i) {
             glm::vec3 o, d;
@@ -277,20 +274,13 @@ TEST(SvoSecondary, HollowSphereMatchesFloat64Tracer)
                 tie_disagree += !g.ok;
                 continue;
             }
-            if (in_restart_window(ref)) {
-                ++window;
-                window_disagree += !g.ok;
-                window_gross += g.gross;
-                if (!g.gross) worst_window_line = std::max(worst_window_line, g.line);
-                continue;
-            }
             ++compared;
             if (!g.ok) {
                 if (++mismatches <= 5)
                     ADD_FAILURE() << v.name << " ray " << i << ": " << g.why << " (dir " << g.dir << ", line " << g.line << ", along "
                                   << g.along << ", T " << g.trans << "; interfaces " << lib.interfaces << " vs " << ref.interfaces
                                   << ", complete " << lib.complete << " vs " << ref.complete << "; edge margin " << ref.edge_margin
-                                  << ", critical " << ref.critical_margin << ", restart " << ref.restart_margin << ")";
+                                  << ", critical " << ref.critical_margin << ")";
                 continue;
             }
             worst.dir = std::max(worst.dir, g.dir);
@@ -299,22 +289,19 @@ TEST(SvoSecondary, HollowSphereMatchesFloat64Tracer)
             if (ref.critical_margin > 1e-2) worst_trans_off_critical = std::max(worst_trans_off_critical, g.trans);
         }
         std::printf("[secondary] sphere vs float64 tracer, %s: %d rays, %d hit (%d through the core, %d out of surfaces); "
-                    "excluded: %d ties (%d disagree), %d re-entries within the restart reach (%d disagree: %d grossly, the "
-                    "others' lines within %.3f voxel); %d compared, %d mismatches, worst direction %.1e, line %.1e voxel, "
+                    "excluded: %d ties (%d disagree); %d compared, %d mismatches, worst direction %.1e, line %.1e voxel, "
                     "transmittance %.1e relative (%.1e off the critical angle)\n",
-                    v.name, kRays, hits, through_core, out_of_surfaces, ties, tie_disagree, window, window_disagree, window_gross,
-                    worst_window_line, compared, mismatches, worst.dir, worst.line, worst.trans, worst_trans_off_critical);
+                    v.name, kRays, hits, through_core, out_of_surfaces, ties, tie_disagree, compared, mismatches, worst.dir,
+                    worst.line, worst.trans, worst_trans_off_critical);
         EXPECT_GT(hits, kRays * 9 / 10) << v.name;
         EXPECT_GT(through_core, kRays * 3 / 8) << v.name;
         total_out_of_surfaces += out_of_surfaces;
         EXPECT_EQ(mismatches, 0) << v.name;
-        // Exclusions stay a small minority. Ties: rays within 5e-4 voxel of a deciding edge, ~1 %.
-        // Restart window: a leg restarts at most 1/8 voxel past an exit, and the march has looked
-        // at every cell the ray crosses within a voxel of it, so no entry the restart must find can
-        // lie within its reach. (Before the march looked ahead, ~1 % of these rays re-entered
-        // there: the restart then refracted with a shifted line, or, 2 in 4000, skipped the face.)
+        // Ties stay a small minority: rays within 5e-4 voxel of a deciding edge, ~1 %. (Before the
+        // march looked past an exit, ~1 % of these rays also re-entered within the reach of the
+        // next leg's restart, which then refracted with a shifted line or, 2 in 4000, skipped the
+        // face: those now count among the mismatches.)
         EXPECT_LT(ties, kRays / 50) << v.name;
-        EXPECT_EQ(window, 0) << v.name;
     }
 
     EXPECT_GE(total_out_of_surfaces, 10);  // the budget's path is exercised too
@@ -331,7 +318,7 @@ TEST(SvoSecondary, HollowSphereMatchesFloat64Tracer)
         sphere_ray(rng, o, d);
         const rkref::MediaTrace rh = hollow.reference(o, d, 64), rc = cored.reference(o, d, 64);
         if (!rh.hit) continue;
-        if (is_tie(rh) || is_tie(rc) || in_restart_window(rh) || in_restart_window(rc)) {
+        if (is_tie(rh) || is_tie(rc)) {
             ++excluded;
             continue;
         }
@@ -588,4 +575,55 @@ TEST(SvoSecondary, MaxSurfacesBoundsTheRecursion)
                 "%u interfaces, z = %.4f, complete %d; 3 -> complete %d\n",
                 int(r0.hit), int(r0.complete), r1.interfaces, double(r1.origin.z), int(r1.complete), r2.interfaces,
                 double(r2.origin.z), int(r2.complete), int(r3.complete));
+}
+
+TEST(SvoSecondary, TotalReflectionAtAReEntryLeavesFromThatFace)
+{
+    // Voxels of index 2/3 in an outside of index 1 (a bubble in glass, scaled): a ray leaves voxel
+    // (10, 10, 10) through its +x face and, within the march's look-ahead, meets the -y face of
+    // (11, 11, 10) at a grazing angle, where going from 1 into 2/3 reflects totally. The leaving ray
+    // is the reflected one, from that face (the march once kept the first exit's ray, pointing into
+    // the voxel). Rays around that one, against the float64 tracer; rays that reflect totally at
+    // their first entry are left out (their next leg starts 1/64 voxel off the face along its
+    // normal, a documented offset the tracer does not model), and so are ties.
+    const MediaWorld w = make_world(
+        5,
+        [](glm::uvec3 c) {
+            return c == glm::uvec3(9, 10, 10) || c == glm::uvec3(10, 10, 10) || c == glm::uvec3(11, 11, 10);
+        },
+        [](glm::uvec3) { return 0u; }, {glm::vec4(2.0f / 3.0f, 0.05f, 0.0f, 0.02f)});
+    const Tolerances tol{2e-5, 5e-4, 1e-4};
+    int rays = 0, lookahead_tir = 0, first_tir = 0, ties = 0, mismatches = 0;
+    for (int i = 0; i < 41; ++i)
+        for (int j = 0; j < 21; ++j) {
+            const float a = glm::radians(30.0f + 0.5f * float(i));  // from +y towards +x
+            const glm::vec3 d = glm::normalize(glm::vec3(std::sin(a), std::cos(a), 0.02f * float(j - 10)));
+            const glm::vec3 o = glm::vec3(9.05f + 0.02f * float(j), 10.0f, 10.5f) - 2.0f * d;
+            std::vector<rkref::MediaEvent> ev;
+            const rkref::MediaTrace ref = w.reference(o, d, 4u, &ev);
+            if (!ref.hit) continue;
+            ++rays;
+            if (!ev.empty() && ev.front().kind == rkref::MediaEvent::entry_reflection) {
+                ++first_tir;
+                continue;
+            }
+            bool exited = false, tir_after_exit = false;
+            for (const rkref::MediaEvent& e : ev) {
+                exited = exited || e.kind == rkref::MediaEvent::exit;
+                tir_after_exit = tir_after_exit || (exited && e.kind == rkref::MediaEvent::entry_reflection);
+            }
+            if (is_tie(ref)) {
+                ++ties;
+                continue;
+            }
+            lookahead_tir += tir_after_exit;
+            const Agreement g = compare(w.trace(o, d, 4u), ref, tol);
+            if (!g.ok && ++mismatches <= 5)
+                ADD_FAILURE() << "ray " << i << "," << j << ": " << g.why << " (dir " << g.dir << ", line " << g.line << ")";
+        }
+    std::printf("[secondary] total reflection at a re-entry: %d rays hit, %d reflect totally at a face met in the "
+                "look-ahead, %d at their first entry (left out), %d ties; %d mismatches\n",
+                rays, lookahead_tir, first_tir, ties, mismatches);
+    EXPECT_GT(lookahead_tir, 20);
+    EXPECT_EQ(mismatches, 0);
 }
