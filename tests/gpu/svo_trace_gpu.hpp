@@ -21,7 +21,7 @@ namespace svotrace_gpu {
 
 /// One traced ray, as both builds report it.
 struct Out {
-    uint32_t hit, t_bits, level, cx, cy, cz, face, attr, iterations;
+    uint32_t hit, t_bits, level, cx, cy, cz, face, attr, iterations, bound;  ///< bound: rk_svo_trace_iteration_bound
 };
 
 inline uint32_t face_code(glm::vec3 n)
@@ -42,7 +42,8 @@ inline std::vector<Out> cpu_trace(const std::vector<uint32_t>& words, const rayk
         uint32_t tb;
         std::memcpy(&tb, &h.t, 4);
         out[i] = {h.hit ? 1u : 0u, tb, h.level, h.cell.x, h.cell.y, h.cell.z, face_code(h.normal),
-                  h.hit ? raykit::rk_svo_trace_attr(words.data(), tree, h) : 0u, h.iterations};
+                  h.hit ? raykit::rk_svo_trace_attr(words.data(), tree, h) : 0u, h.iterations,
+                  raykit::rk_svo_trace_iteration_bound(tree)};
     }
     return out;
 }
@@ -68,11 +69,11 @@ inline std::vector<Out> gpu_trace(const raykit::SvoTree& t, const raykit::rk_svo
            "  tr.brick_base_word = rk_tree_u.w; tr.root_min = rk_tree_f.xyz; tr.root_size = rk_tree_f.w;\n";
     src += "  vec4 a = rk_rays[2u * i]; vec4 b = rk_rays[2u * i + 1u];\n";
     src += "  rk_svo_trace_hit h = rk_svo_trace(0u, tr, a.xyz, b.xyz, b.w, rk_cone);\n";
-    src += "  uint o = 9u * i;\n";
+    src += "  uint o = 10u * i;\n";
     src += "  rk_out[o] = h.hit ? 1u : 0u; rk_out[o + 1u] = floatBitsToUint(h.t); rk_out[o + 2u] = h.level;\n"
            "  rk_out[o + 3u] = h.cell.x; rk_out[o + 4u] = h.cell.y; rk_out[o + 5u] = h.cell.z;\n"
            "  rk_out[o + 6u] = face_code(h.normal); rk_out[o + 7u] = h.hit ? rk_svo_trace_attr(0u, tr, h) : 0u;\n"
-           "  rk_out[o + 8u] = h.iterations;\n}\n";
+           "  rk_out[o + 8u] = h.iterations; rk_out[o + 9u] = rk_svo_trace_iteration_bound(tr);\n}\n";
     std::vector<ShaderDefine> defs = {{"RK_SVO_WORDS_BINDING", "0"},
                                       {"RK_SVO_BUFFER_TEXTURE", texture ? "1" : "0"},
                                       {"RK_SVO_TRAVERSE_LOD", lod ? "1" : "0"}};
@@ -216,6 +217,7 @@ inline long compare(const char* what, const std::vector<svotrace::Ray>& rays, co
                     ok = y.hit && float_of(y.t_bits) <= t0 + tol_i * tunit + 8e-7 * t0;
             }
         }
+        ok = ok && g.bound == c.bound;  // the same loop bound (rk_svo_trace_iteration_bound) in both builds
         if (!ok) {
             if (bad < 5)
                 ADD_FAILURE() << what << " ray " << i << " (" << svotrace::family_names[r.family] << ") o=(" << r.origin.x
