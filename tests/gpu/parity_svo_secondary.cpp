@@ -79,9 +79,10 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
            "  tr.brick_base_word = rk_tree_u.w; tr.root_min = rk_tree_f.xyz; tr.root_size = rk_tree_f.w;\n";
     src += "  rk_svo_refraction r = rk_svo_refract_through(0u, tr, 0u, rk_rays[4u * i].xyz, rk_rays[4u * i + 1u].xyz, 1.0, 6u);\n";
     src += "  bool sh = rk_svo_shadowed(0u, tr, rk_rays[4u * i + 2u].xyz, vec3(0.0, 1.0, 0.0), tr.depth, rk_rays[4u * i + 3u].xyz, 3.0e38);\n";
-    src += "  rk_out[3u * i] = vec4(r.origin, r.transmittance.x);\n";
-    src += "  rk_out[3u * i + 1u] = vec4(r.dir, r.reflectance);\n";
-    src += "  rk_out[3u * i + 2u] = vec4(float(r.interfaces), r.hit ? 1.0 : 0.0, sh ? 1.0 : 0.0, 0.0);\n}\n";  // small integers, exact
+    src += "  rk_out[5u * i] = vec4(r.origin, r.transmittance.x);\n";
+    src += "  rk_out[5u * i + 1u] = vec4(r.dir, r.reflectance);\n";
+    src += "  rk_out[5u * i + 2u] = vec4(float(r.interfaces), r.hit ? 1.0 : 0.0, sh ? 1.0 : 0.0, r.complete ? 1.0 : 0.0);\n";  // small integers, exact
+    src += "  rk_out[5u * i + 3u] = vec4(r.reflect_origin, 0.0);\n  rk_out[5u * i + 4u] = vec4(r.reflect_dir, 0.0);\n}\n";
     src = rkgl::resolved_shader(src, "svo_secondary.comp", parity::shader_dir(), {parity::shader_dir()},
                                 {{"RK_SVO_WORDS_BINDING", "0"}});
     GLuint prog = rkgl::build_program({{GL_COMPUTE_SHADER, src}});
@@ -89,7 +90,7 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
     GLuint bids = rkgl::make_buffer(ids.size() * 4, ids.data());
     GLuint bmed = rkgl::make_buffer(media.size() * sizeof(glm::vec4), media.data());
     GLuint brays = rkgl::make_buffer(rays.size() * sizeof(glm::vec4), rays.data());
-    GLuint bout = rkgl::make_buffer(size_t(N) * 3 * sizeof(glm::vec4), nullptr);
+    GLuint bout = rkgl::make_buffer(size_t(N) * 5 * sizeof(glm::vec4), nullptr);
     glUseProgram(prog);
     glUniform1ui(0, GLuint(N));
     glUniform4ui(1, tree.depth, tree.max_level, tree.desc_words, tree.brick_base_word);
@@ -101,20 +102,21 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bmed);
     glDispatchCompute(GLuint((N + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::vec4> g(size_t(N) * 3);
+    std::vector<glm::vec4> g(size_t(N) * 5);
     glGetNamedBufferSubData(bout, 0, GLsizeiptr(g.size() * sizeof(glm::vec4)), g.data());
     GLuint bufs[5] = {bw, bids, bmed, brays, bout};
     glDeleteBuffers(5, bufs);
     glDeleteProgram(prog);
 
     long hits = 0, deep = 0, ties = 0, shadow_diff = 0, shadowed = 0;
-    double worst_dir = 0.0, worst_T = 0.0;
+    double worst_dir = 0.0, worst_T = 0.0, worst_refl = 0.0, worst_refl_o = 0.0;
     for (int i = 0; i < N; ++i) {
         const rk_svo_refraction r = rk_svo_refract_through(words.data(), tree, mref, glm::vec3(rays[size_t(4 * i)]),
                                                            glm::vec3(rays[size_t(4 * i + 1)]), 1.0f, 6u);
         const bool sh = rk_svo_shadowed(words.data(), tree, glm::vec3(rays[size_t(4 * i + 2)]), glm::vec3(0.0f, 1.0f, 0.0f), tree.depth,
                                         glm::vec3(rays[size_t(4 * i + 3)]), 3.0e38f);
-        const glm::vec4 a = g[size_t(3 * i)], b = g[size_t(3 * i + 1)], c = g[size_t(3 * i + 2)];
+        const glm::vec4 a = g[size_t(5 * i)], b = g[size_t(5 * i + 1)], c = g[size_t(5 * i + 2)];
+        const glm::vec3 ro(g[size_t(5 * i + 3)]), rd(g[size_t(5 * i + 4)]);
         const uint32_t gi = uint32_t(c.x), gh = uint32_t(c.y), gs = uint32_t(c.z);
         shadow_diff += (gs != 0u) != sh;
         shadowed += sh;
@@ -133,15 +135,24 @@ TEST(GpuParity, SvoSecondaryRefractionAndShadows)
         worst_dir = std::max(worst_dir, de);
         worst_T = std::max(worst_T, double(std::abs(a.w - r.transmittance.x)) / std::max(double(r.transmittance.x), 1e-6));
         EXPECT_NEAR(b.w, r.reflectance, 1e-5f) << i;
+        EXPECT_EQ(c.w != 0.0f, r.complete) << i;
+        if (r.hit) {
+            // The first surface's reflection ray, which the caller traces.
+            worst_refl = std::max(worst_refl, double(glm::length(rd - r.reflect_dir)));
+            worst_refl_o = std::max(worst_refl_o, double(glm::length(ro - r.reflect_origin)));
+        }
     }
     std::printf("[parity] rk_svo_refract_through %d rays (%ld hit, %ld crossing >= 4 surfaces): %ld differ (edge ties), "
-                "worst direction %.1e, transmittance %.1e relative; rk_svo_shadowed: %ld of %d shadowed, %ld differ\n",
-                N, hits, deep, ties, worst_dir, worst_T, shadowed, N, shadow_diff);
+                "worst direction %.1e, transmittance %.1e relative, reflection ray %.1e in direction and %.1e voxel in "
+                "origin; rk_svo_shadowed: %ld of %d shadowed, %ld differ\n",
+                N, hits, deep, ties, worst_dir, worst_T, worst_refl, worst_refl_o, shadowed, N, shadow_diff);
     EXPECT_GT(hits, N / 2);
     EXPECT_GT(deep, N / 10);
     EXPECT_LE(ties, N / 100);
     EXPECT_LT(worst_dir, 2e-5);  // measured 5.4e-6
     EXPECT_LT(worst_T, 5e-4);  // GLSL exp() is looser than libm; products over up to ~100 voxels
+    EXPECT_LT(worst_refl, 1e-5);
+    EXPECT_LT(worst_refl_o, 1e-3);
     EXPECT_LE(shadow_diff, N / 1000);  // measured 0
     EXPECT_GT(shadowed, N / 10);
 }
