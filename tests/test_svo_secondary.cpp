@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "raykit/svo_secondary.hpp"
+#include "reference/fresnel_ref.hpp"
 #include "svo_test_pack.hpp"
 
 using namespace raykit;
@@ -45,17 +46,6 @@ SvoTree make_tree(uint32_t depth, Inside inside, Material material, std::vector<
     material_ids.assign(size_t(t.attr_count), 0u);
     svo_for_each_voxel(t, [&](glm::uvec3 c, uint64_t a) { material_ids[size_t(a)] = material(c); });
     return t;
-}
-
-/// Fresnel reflectance, unpolarised, float64 (textbook form), n1 -> n2 at incidence cos_i.
-double fresnel64(double cos_i, double n1, double n2)
-{
-    const double s2 = (n1 / n2) * (n1 / n2) * (1.0 - cos_i * cos_i);
-    if (s2 >= 1.0) return 1.0;
-    const double cos_t = std::sqrt(1.0 - s2);
-    const double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    const double rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
-    return 0.5 * (rs * rs + rp * rp);
 }
 
 }  // namespace
@@ -97,7 +87,7 @@ TEST(SvoSecondary, SlabObeysSnellsLaw)
                 rk_svo_interface f = rk_svo_interface_at(glm::vec3(d), glm::vec3(0.0f, 0.0f, 1.0f), 1.0f, float(n));
                 worst_in = std::max(worst_in, glm::length(glm::dvec3(glm::normalize(f.transmitted)) - din));
                 // Fresnel and transmittance.
-                const double R_in = fresnel64(std::cos(th), 1.0, n), R_out = fresnel64(ct, n, 1.0);
+                const double R_in = ref::fresnel(std::cos(th), n), R_out = ref::fresnel(ct, 1.0 / n);
                 worst_R = std::max(worst_R, std::abs(double(r.reflectance) - R_in));
                 const double L = 4.0 / ct;
                 for (int ch = 0; ch < 3; ++ch) {

@@ -1,6 +1,7 @@
 // Float64 reference for refraction through voxel media (svo_secondary.glsl's
 // rk_svo_refract_through / rk_svo_march), written apart from the shader from its documented
-// contract: a plain cell-by-cell walk in double, no code of the shader's reused. Only std + GLM.
+// contract: a plain cell-by-cell walk in double, no code of the shader's reused. Only std, GLM and
+// the suite's float64 Fresnel (reference/fresnel_ref.hpp).
 //
 // World. A grid of unit cells [0, side)^3 (cell c is the box [c, c + 1]); the caller says which
 // cells are occupied and, for those, their medium {n, absorb rgb per unit length}. Empty cells and
@@ -49,6 +50,8 @@
 
 #include <glm/glm.hpp>
 
+#include "reference/fresnel_ref.hpp"
+
 namespace rkref {
 
 /// A voxel's medium: refractive index and Beer–Lambert absorption per unit length.
@@ -56,19 +59,6 @@ struct VoxelMedium {
     double n = 1.0;
     glm::dvec3 absorb{0.0};
 };
-
-/// Unpolarised Fresnel reflectance of a dielectric interface n1 -> n2 at incidence cos_i in [0, 1]
-/// (textbook s/p amplitudes); 1 under total internal reflection.
-inline double fresnel_unpolarized(double cos_i, double n1, double n2)
-{
-    const double eta = n1 / n2;
-    const double k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    if (k <= 0.0) return 1.0;
-    const double cos_t = std::sqrt(k);
-    const double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    const double rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
-    return 0.5 * (rs * rs + rp * rp);
-}
 
 /// One event on the path (for tests that want to know where the ray went).
 struct MediaEvent {
@@ -126,7 +116,7 @@ inline bool snell_axis(glm::dvec3& d, int a, double n1, double n2, double& k, do
         d[a] = -d[a];
         return false;
     }
-    R = fresnel_unpolarized(std::min(cos_i, 1.0), n1, n2);
+    R = ref::fresnel(std::min(cos_i, 1.0), n2 / n1);  // the suite's float64 Fresnel (reference/fresnel_ref.hpp)
     const double s = d[a] >= 0.0 ? 1.0 : -1.0;
     for (int j = 0; j < 3; ++j)
         if (j != a) d[j] *= eta;

@@ -1,6 +1,6 @@
 // svo_secondary.glsl built with RK_SVO_SECONDARY_FRESNEL_FAST=1, in a translation unit of its own
 // inside test_svo_secondary (whose other units use the exact default): rk_svo_interface_at's
-// reflectance against the float64 unpolarised Fresnel formula, written here. External reflection
+// reflectance against the suite's float64 Fresnel (reference/fresnel_ref.hpp). External reflection
 // uses the fast form, within its documented error (fresnel.glsl: 1.7e-3 at eta 1.52, 3.7e-3 at
 // 1.33, 3.5e-4 at 2.0); internal reflection stays exact, TIR gives 1; directions are unchanged.
 #define RK_SVO_SECONDARY_FRESNEL_FAST 1
@@ -10,22 +10,9 @@
 #include <cstdio>
 
 #include "raykit/svo_secondary.hpp"
+#include "reference/fresnel_ref.hpp"
 
 using namespace raykit;
-
-namespace {
-
-double fresnel_exact64(double cos_i, double n1, double n2)
-{
-    const double s2 = (n1 / n2) * (n1 / n2) * (1.0 - cos_i * cos_i);
-    if (s2 >= 1.0) return 1.0;
-    const double ct = std::sqrt(1.0 - s2);
-    const double rs = (n1 * cos_i - n2 * ct) / (n1 * cos_i + n2 * ct);
-    const double rp = (n1 * ct - n2 * cos_i) / (n1 * ct + n2 * cos_i);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-}  // namespace
 
 TEST(SvoSecondaryFastFresnel, ExternalWithinItsBoundInternalExact)
 {
@@ -47,7 +34,7 @@ TEST(SvoSecondaryFastFresnel, ExternalWithinItsBoundInternalExact)
             // Within 1e-3 of the critical angle's k = 0, float's ~1e-7 error in k moves R by about
             // 1e-7 / (2 sqrt(k)) relative to 1 - R: left out (TIR itself is checked below).
             if (kt > 0.0 && kt < 1e-3) continue;
-            worst = std::max(worst, std::abs(double(f.reflectance) - fresnel_exact64(cos_i, double(float(c.n1)), double(float(c.n2)))));
+            worst = std::max(worst, std::abs(double(f.reflectance) - ref::fresnel(cos_i, double(float(c.n2)) / double(float(c.n1)))));
             // The mirror direction does not depend on the Fresnel form.
             worst_dir = std::max(worst_dir, glm::length(glm::dvec3(f.reflected) - glm::dvec3(d.x, d.y, -d.z)));
             const bool tir = (c.n1 / c.n2) * std::sin(th) > 1.0 + 1e-6;
@@ -64,5 +51,5 @@ TEST(SvoSecondaryFastFresnel, ExternalWithinItsBoundInternalExact)
     const double th = 60.0 * 3.14159265358979323846 / 180.0;
     const rk_svo_interface f = rk_svo_interface_at(glm::vec3(float(std::sin(th)), 0.0f, float(-std::cos(th))),
                                                    glm::vec3(0.0f, 0.0f, 1.0f), 1.0f, 1.52f);
-    EXPECT_GT(std::abs(double(f.reflectance) - fresnel_exact64(std::cos(th), 1.0, 1.52)), 1e-5);
+    EXPECT_GT(std::abs(double(f.reflectance) - ref::fresnel(std::cos(th), 1.52)), 1e-5);
 }

@@ -202,7 +202,7 @@ StackAnswer closed_form_stack(glm::dvec3 entry, glm::dvec3 d, const std::vector<
     glm::dvec3 optical(0.0);
     auto cross = [&](double n, double c) {  // an interface n_prev -> n, cos theta before: c_prev
         if (n == n_prev) return;
-        const double R = rkref::fresnel_unpolarized(c_prev, n_prev, n);
+        const double R = ref::fresnel(c_prev, n / n_prev);
         if (a.interfaces == 0u) a.reflectance = R;
         a.transmittance *= 1.0 - R;
         ++a.interfaces;
@@ -369,7 +369,7 @@ TEST(SvoSecondary, FirstSurfaceMirrorAndFresnel)
         ++n;
         const glm::dvec3 dd = glm::normalize(glm::dvec3(d)), nn = ref.entry_normal;
         const glm::dvec3 mirror = dd - 2.0 * glm::dot(dd, nn) * nn;
-        const double R = rkref::fresnel_unpolarized(std::abs(glm::dot(dd, nn)), 1.0, 1.5);
+        const double R = ref::fresnel(std::abs(glm::dot(dd, nn)), 1.5);
         worst_dir = std::max(worst_dir, glm::length(glm::dvec3(lib.reflect_dir) - mirror));
         worst_R = std::max(worst_R, std::abs(double(lib.reflectance) - R));
         worst_origin = std::max(worst_origin, glm::length(glm::dvec3(lib.reflect_origin) - (ref.entry_point + nn / 64.0)));
