@@ -17,15 +17,6 @@
 
 using namespace raykit;
 
-namespace {
-
-struct Out {
-    float ox, oy, oz, dx, dy, dz, tr, refl;
-    uint32_t interfaces, hit, shadowed, pad;
-};
-
-}  // namespace
-
 TEST(GpuParity, SvoSecondaryRefractionAndShadows)
 {
     // Sphere radius 26 (index 1.5, slight absorption) with a core of radius 13 of index 1.0, and
